@@ -1,0 +1,16 @@
+#pragma once
+// Subcommands of the geaware CLI. Each registers its options on the app and returns the
+// function that runs it; the work itself lives in the libraries.
+
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+namespace geaware::cli {
+
+using Runner = std::function<int()>;
+
+/// `geaware model`: the controller-side ground-effect model tabulated over heights.
+Runner addModelCommand(CLI::App& app);
+
+}  // namespace geaware::cli

@@ -1,0 +1,31 @@
+// geaware command line: parse, call a library function, print. Errors end in one line per
+// problem on stderr and a non-zero exit status (1: bad input or failure, 2: bad usage).
+
+#include <exception>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"geaware — ground-effect-aware modelling, identification and control for multicopters"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "geaware 0.1.0");
+
+  std::function<int()> run;
+  const auto model = geaware::cli::addModelCommand(app);
+  app.get_subcommand("model")->callback([&] { run = model; });
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  try {
+    return run();
+  } catch (const std::exception& e) {
+    std::cerr << "geaware: error: " << e.what() << "\n";
+    return 1;
+  }
+}

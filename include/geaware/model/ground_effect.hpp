@@ -1,0 +1,65 @@
+#pragma once
+// Controller-side ground-effect model of the paper: additional thrust F_G(h) (eq. 5), leveling
+// torque M_G(h) (eq. 13–14) and its "payload ball" equivalent inertia J'(h) (eq. 24–25).
+//
+// Height convention: h is the distance from the ground to the centre of the rotor plane [m].
+// Heights below the vehicle's smallest physical rotor-plane height (its landing gear) cannot be
+// flown and lie outside the range the curves were fitted on, so every function clamps h up to
+// that minimum (its derivative is then 0). There is no upper limit: F_G and M_G decay to 0.
+// A non-finite h gives a non-finite result; callers guard their inputs (see control/).
+
+#include <Eigen/Core>
+
+#include "geaware/model/vehicle_params.hpp"
+
+namespace geaware::model {
+
+class GroundEffectModel {
+ public:
+  /// Requires validated parameters (VehicleParams::validate() empty).
+  explicit GroundEffectModel(const VehicleParams& params);
+
+  /// The height actually used by the model: max(h, min_rotor_plane_height) [m].
+  [[nodiscard]] double effectiveHeight(double h_m) const noexcept {
+    return h_m < min_height_m_ ? min_height_m_ : h_m;
+  }
+
+  /// Additional-thrust ratio F_G(h) = g2/(h²+g1): f_G = F_G·T·z_B [-].
+  [[nodiscard]] double thrustRatio(double h_m) const noexcept;
+
+  /// dF_G/dh [1/m]; zero below the minimum height where the model is clamped.
+  [[nodiscard]] double thrustRatioSlope(double h_m) const noexcept;
+
+  /// Leveling coefficient M_G(h) = scale·h/(h²+g3·h+g4)² [m]: leveling torque per newton of
+  /// thrust per unit sin δ.
+  [[nodiscard]] double levelingCoefficient(double h_m) const noexcept;
+
+  /// Height of the maximum of M_G, (−g3 + √(g3² + 12·g4))/6 [m].
+  [[nodiscard]] double levelingPeakHeight() const noexcept;
+
+  /// Leveling torque in the body frame [N·m]: R·τ_G = M_G(h)·T·(z_B × z_W) (paper eq. 13).
+  [[nodiscard]] Eigen::Vector3d levelingTorque_B(const Eigen::Matrix3d& R_WB, double h_m,
+                                                 double thrust_N) const noexcept;
+
+  /// Inertia increment q(h) = [M_G(h)·T]²/(m·g²) with the hover approximation
+  /// M_G·T ≈ m·g·M_G/(1+F_G) (paper eq. 25–26), so q = m·M_G²/(1+F_G)² [kg·m²].
+  [[nodiscard]] double levelingInertiaIncrement(double h_m) const noexcept;
+
+  /// Same, with the actual thrust instead of the hover approximation [kg·m²].
+  [[nodiscard]] double levelingInertiaIncrement(double h_m, double thrust_N) const noexcept;
+
+  /// J'(h) = J + diag(q, q, 0), the payload-ball equivalent inertia (hover approximation).
+  [[nodiscard]] Eigen::Matrix3d levelingInertia(double h_m) const noexcept;
+
+  /// Diagonal of J'(h) [kg·m²].
+  [[nodiscard]] Eigen::Vector3d levelingInertiaDiagonal(double h_m) const noexcept;
+
+ private:
+  double mass_kg_;
+  Eigen::Vector3d inertia_kgm2_;
+  double min_height_m_;
+  AdditionalThrustParams thrust_;
+  LevelingTorqueParams leveling_;
+};
+
+}  // namespace geaware::model

@@ -1,0 +1,79 @@
+#pragma once
+// The controller-side description of a quadrotor: every number the models of the paper need,
+// with its unit in the field name and comment. The vehicle file format (config/vehicles/*.yaml)
+// mirrors this struct key for key; see docs/vehicle-file.md.
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace geaware::model {
+
+/// One field that failed validation. `field` is the key path as written in the vehicle file
+/// (e.g. "rotor.k_T_N_per_rpm2"), so loaders can point at the offending line.
+struct FieldError {
+  std::string field;     ///< key path, dot separated
+  std::string value;     ///< the offending value, printed
+  std::string expected;  ///< what a valid value looks like
+};
+
+/// Rotor and mixer coefficients (paper eq. 2). Speeds are in rpm.
+struct RotorParams {
+  double k_T_N_per_rpm2 = 0.0;     ///< thrust coefficient, T_i = k_T·n_i² [N/rpm²]
+  double k_TX_N_per_rpm2 = 0.0;    ///< roll torque-by-thrust coefficient [N/rpm²]
+  double k_TY_N_per_rpm2 = 0.0;    ///< pitch torque-by-thrust coefficient [N/rpm²]
+  double k_I_Nm_per_rpm2 = 0.0;    ///< reaction-torque coefficient, M_i = k_I·n_i² [N·m/rpm²]
+  double J_R_kgm2 = 0.0;           ///< rotor (+ motor bell) inertia about its axis [kg·m²]
+};
+
+/// ESC throttle curve: n² = c2·t² + c1·t + c0 for throttle t ∈ [0, 1], n in rpm.
+/// (FACTS.md: the published curve is one of rpm², and its printed c0 has a factor-10 typo.)
+struct ThrottleCurveParams {
+  double c2_rpm2 = 0.0;  ///< quadratic coefficient [rpm²]
+  double c1_rpm2 = 0.0;  ///< linear coefficient [rpm²]
+  double c0_rpm2 = 0.0;  ///< value at zero throttle [rpm²]
+};
+
+/// Additional-thrust ratio F_G(h) = g2 / (h² + g1), h in m (paper eq. 5).
+struct AdditionalThrustParams {
+  double g1_m2 = 0.0;  ///< [m²]
+  double g2_m2 = 0.0;  ///< [m²]; F_G is dimensionless
+};
+
+/// Leveling-torque coefficient M_G(h) = scale·h / (h² + g3·h + g4)² [m], i.e. newton-metres of
+/// leveling torque per newton of thrust per unit sin δ (paper eq. 13–14).
+struct LevelingTorqueParams {
+  double g3_m = 0.0;       ///< [m]
+  double g4_m2 = 0.0;      ///< [m²]
+  double scale_m4 = 0.0;   ///< the paper's g5 role, calibrated to measured torques [m⁴]
+};
+
+/// Rotor-drag coefficients measured per height (paper eq. 18), interpolated linearly in h and
+/// held constant outside the table. The last row is the high-altitude reference.
+struct DragTableParams {
+  std::vector<double> heights_m;         ///< strictly increasing heights [m]
+  std::vector<double> d_x_N_per_mps;     ///< body-x drag coefficient at each height [N/(m/s)]
+  std::vector<double> d_y_N_per_mps;     ///< body-y drag coefficient at each height [N/(m/s)]
+};
+
+/// Everything the controller-side model knows about one quadrotor (X configuration).
+struct VehicleParams {
+  std::string name;                          ///< free text, e.g. "paper_quad"
+  double mass_kg = 0.0;                      ///< total flying mass [kg]
+  Eigen::Vector3d inertia_kgm2 = Eigen::Vector3d::Zero();  ///< principal inertia Ixx, Iyy, Izz [kg·m²]
+  double diagonal_rotor_distance_m = 0.0;    ///< b, distance between diagonal rotor axes [m]
+  double propeller_radius_m = 0.0;           ///< propeller radius [m]
+  double min_rotor_plane_height_m = 0.0;     ///< lowest physical rotor-plane height (landing gear) [m]
+  RotorParams rotor;
+  ThrottleCurveParams throttle;
+  AdditionalThrustParams additional_thrust;
+  LevelingTorqueParams leveling_torque;
+  DragTableParams drag;
+
+  /// Every field that is not finite or not in its physical range, with the value and the
+  /// expectation. Empty when the parameters are usable.
+  [[nodiscard]] std::vector<FieldError> validate() const;
+};
+
+}  // namespace geaware::model

@@ -1,0 +1,157 @@
+#include "yaml_reader.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace geaware::io::detail {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+int lineOfNode(const YAML::Node& n) { return n.Mark().line >= 0 ? n.Mark().line + 1 : 0; }
+
+const char* typeName(const YAML::Node& n) {
+  switch (n.Type()) {
+    case YAML::NodeType::Map: return "a map";
+    case YAML::NodeType::Sequence: return "a list";
+    case YAML::NodeType::Scalar: return "a scalar";
+    case YAML::NodeType::Null: return "an empty value";
+    default: return "nothing";
+  }
+}
+
+/// Parses a scalar as a double; YAML's .nan/.inf are accepted here and rejected by validation
+/// with the expected range, which makes a better message.
+bool toNumber(const YAML::Node& n, double& out) {
+  if (!n.IsScalar()) return false;
+  try {
+    out = n.as<double>();
+    return true;
+  } catch (const YAML::Exception&) {
+    return false;
+  }
+}
+
+}  // namespace
+
+int YamlContext::lineOf(std::string key) const {
+  while (true) {
+    if (auto it = lines.find(key); it != lines.end()) return it->second;
+    const auto cut = key.find_last_of(".[");
+    if (cut == std::string::npos) return 0;
+    key.resize(cut);
+  }
+}
+
+MapReader::MapReader(YAML::Node node, std::string path, YamlContext& ctx, int header_line)
+    : node_(std::move(node)),
+      path_(std::move(path)),
+      ctx_(ctx),
+      valid_(node_.IsMap()),
+      header_line_(header_line) {}
+
+std::string MapReader::pathOf(const std::string& key) const {
+  return path_.empty() ? key : path_ + "." + key;
+}
+
+YAML::Node MapReader::required(const std::string& key) {
+  read_.insert(key);
+  if (!valid_) return YAML::Node(YAML::NodeType::Undefined);
+  // Look the key up by iteration: we want the line of the key itself (for a section, its
+  // header line), not of its value, which for a map is the line of its first child.
+  for (const auto& kv : node_) {
+    if (kv.first.IsScalar() && kv.first.Scalar() == key) {
+      const YAML::Node child = kv.second;
+      if (!child.IsDefined() || child.IsNull()) {
+        ctx_.problem(lineOfNode(kv.first), pathOf(key), "has no value");
+        return YAML::Node(YAML::NodeType::Undefined);
+      }
+      ctx_.lines[pathOf(key)] = lineOfNode(kv.first);
+      return child;
+    }
+  }
+  ctx_.problem(header_line_, pathOf(key),
+               path_.empty() ? "is missing (required)"
+                             : "is missing (required in section '" + path_ + "')");
+  return YAML::Node(YAML::NodeType::Undefined);
+}
+
+double MapReader::number(const std::string& key) {
+  const YAML::Node n = required(key);
+  if (!n.IsDefined()) return kNaN;
+  double v = kNaN;
+  if (!toNumber(n, v)) {
+    ctx_.problem(lineOfNode(n), pathOf(key),
+                 n.IsScalar() ? "expected a number, got '" + n.Scalar() + "'"
+                              : std::string("expected a number, got ") + typeName(n));
+    return kNaN;
+  }
+  return v;
+}
+
+std::string MapReader::text(const std::string& key) {
+  const YAML::Node n = required(key);
+  if (!n.IsDefined()) return {};
+  if (!n.IsScalar()) {
+    ctx_.problem(lineOfNode(n), pathOf(key), std::string("expected text, got ") + typeName(n));
+    return {};
+  }
+  return n.Scalar();
+}
+
+std::vector<double> MapReader::numbers(const std::string& key) {
+  const YAML::Node n = required(key);
+  std::vector<double> out;
+  if (!n.IsDefined()) return out;
+  if (!n.IsSequence()) {
+    ctx_.problem(lineOfNode(n), pathOf(key),
+                 std::string("expected a list of numbers, got ") + typeName(n));
+    return out;
+  }
+  out.reserve(n.size());
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    const std::string item = pathOf(key) + "[" + std::to_string(i) + "]";
+    ctx_.lines[item] = lineOfNode(n[i]);
+    double v = kNaN;
+    if (!toNumber(n[i], v)) {
+      ctx_.problem(lineOfNode(n[i]), item,
+                   n[i].IsScalar() ? "expected a number, got '" + n[i].Scalar() + "'"
+                                   : std::string("expected a number, got ") + typeName(n[i]));
+    }
+    out.push_back(v);
+  }
+  return out;
+}
+
+MapReader MapReader::map(const std::string& key) {
+  YAML::Node n = required(key);
+  if (n.IsDefined() && !n.IsMap()) {
+    ctx_.problem(lineOfNode(n), pathOf(key), std::string("expected a map, got ") + typeName(n));
+  }
+  // An absent or malformed map still yields a reader, so its keys are reported once as the
+  // parent's problem rather than once per missing child.
+  MapReader child(n.IsDefined() && n.IsMap() ? n : YAML::Node(YAML::NodeType::Undefined),
+                  pathOf(key), ctx_, ctx_.lineOf(pathOf(key)));
+  return child;
+}
+
+void MapReader::rejectUnknownKeys() {
+  if (!valid_) return;
+  std::set<std::string> seen;
+  for (const auto& kv : node_) {
+    const std::string key = kv.first.Scalar();
+    // yaml-cpp keeps the first of two equal keys silently; a duplicated key is almost always
+    // an edit gone wrong, and which value wins must not be a guess.
+    if (!seen.insert(key).second) {
+      ctx_.problem(lineOfNode(kv.first), pathOf(key), "appears more than once in this map");
+      continue;
+    }
+    if (!read_.contains(key)) {
+      std::string known;
+      for (const auto& k : read_) known += (known.empty() ? "" : ", ") + k;
+      ctx_.problem(lineOfNode(kv.first), pathOf(key), "unknown key (expected one of: " + known + ")");
+    }
+  }
+}
+
+}  // namespace geaware::io::detail
