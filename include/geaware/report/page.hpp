@@ -1,0 +1,90 @@
+#pragma once
+// The project's one report module: self-contained HTML pages (open from disk, no server, no
+// network) with interactive plots, and PNG export of a page through headless Chromium.
+// Every command that makes figures (rig calibration, identification, the benchmark campaign)
+// builds a Page and writes it. Usage and the build-time bundling of plotly.js: docs/report.md.
+
+#include <filesystem>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace geaware::report {
+
+/// One curve or scatter of a plot. Non-finite values are written as gaps (JSON null).
+struct Series {
+  std::string name;
+  std::vector<double> x;
+  std::vector<double> y;
+  std::string mode = "lines";  ///< "lines", "markers" or "lines+markers"
+  std::string dash;            ///< "" (solid), "dash", "dot"
+};
+
+enum class AxisType { kLinear, kLog };
+
+struct Plot {
+  std::string title;
+  std::string x_label;  ///< with unit, e.g. "h [m]"
+  std::string y_label;
+  std::vector<Series> series;
+  AxisType x_axis = AxisType::kLinear;
+  AxisType y_axis = AxisType::kLinear;
+  int height_px = 420;  ///< height of the plot on the page [px], 100…4000
+};
+
+struct Table {
+  std::string title;
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+};
+
+class Page {
+ public:
+  /// Throws std::invalid_argument if the title is empty.
+  explicit Page(std::string title);
+
+  /// A paragraph of plain text (escaped), e.g. the command that produced the page.
+  void addText(std::string text);
+  /// A section heading (escaped); blocks appear in the order they were added.
+  void addHeading(std::string text);
+  /// Throws std::invalid_argument naming the table when a row's width differs from the header's.
+  void addTable(Table table);
+  /// Throws std::invalid_argument naming the plot and series when x and y differ in length, or
+  /// when mode, dash or height_px is not one of the documented values.
+  void addPlot(Plot plot);
+
+  /// Writes one self-contained HTML file (plotting library inlined). Throws std::runtime_error
+  /// naming the file when it cannot be written, and naming the plotly.js path when the library
+  /// cannot be read (see plotlyJsPath()).
+  void write(const std::filesystem::path& html_file) const;
+
+  /// The page as HTML text, with `plotly_js` inlined as the plotting library (write() passes
+  /// the bundled plotly.min.js). Throws std::runtime_error if `plotly_js` contains "<script" or
+  /// "</script", which would break out of the inline script element.
+  [[nodiscard]] std::string html(const std::string& plotly_js) const;
+
+  [[nodiscard]] const std::string& title() const { return title_; }
+
+ private:
+  struct Text {
+    std::string text;
+  };
+  struct Heading {
+    std::string text;
+  };
+  using Block = std::variant<Text, Heading, Table, Plot>;
+
+  std::string title_;
+  std::vector<Block> blocks_;
+};
+
+/// Where write() reads the minified plotly.js from: the environment variable GEAWARE_PLOTLY_JS
+/// when set and non-empty (installed setups), otherwise the copy CMake placed in the build tree.
+[[nodiscard]] std::filesystem::path plotlyJsPath();
+
+/// Renders `html_file` to `png_file` with headless Chromium at the given window size.
+/// Throws std::runtime_error with the reason (no Chromium found, render failed).
+void exportPng(const std::filesystem::path& html_file, const std::filesystem::path& png_file,
+               int width_px = 1200, int height_px = 900);
+
+}  // namespace geaware::report

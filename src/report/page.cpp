@@ -1,0 +1,279 @@
+#include "geaware/report/page.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+#include <string_view>
+#include <type_traits>
+#include <utility>
+
+#include "escape.hpp"
+
+#ifndef GEAWARE_PLOTLY_JS_BUILD_PATH
+#error "GEAWARE_PLOTLY_JS_BUILD_PATH must name the plotly.min.js that CMake copies (src/report)"
+#endif
+
+namespace geaware::report {
+namespace {
+
+using detail::escapeHtml;
+using detail::jsonNumber;
+using detail::jsonString;
+
+constexpr std::array<std::string_view, 3> kModes = {"lines", "markers", "lines+markers"};
+constexpr std::array<std::string_view, 3> kDashes = {"", "dash", "dot"};
+constexpr int kMinHeightPx = 100;
+constexpr int kMaxHeightPx = 4000;
+
+// The page's own look: a centred column, readable type, striped tables. Kept in one place so
+// every report of the project looks the same.
+constexpr std::string_view kStyle = R"css(
+:root { --fg: #1f2328; --muted: #59636e; --line: #d1d9e0; --stripe: #f6f8fa; --accent: #0969da; }
+* { box-sizing: border-box; }
+body { margin: 0; color: var(--fg); background: #fff;
+       font: 15px/1.55 system-ui, -apple-system, "Segoe UI", "DejaVu Sans", Arial, sans-serif; }
+main { max-width: 1100px; margin: 0 auto; padding: 28px 32px 48px; }
+h1 { font-size: 1.7em; margin: 0 0 12px; padding-bottom: 8px; border-bottom: 2px solid var(--line); }
+h2 { font-size: 1.3em; margin: 32px 0 8px; }
+h3 { font-size: 1.05em; margin: 0 0 6px; color: var(--muted); }
+p.text { white-space: pre-wrap; margin: 8px 0; }
+section.table { margin: 18px 0; overflow-x: auto; }
+table { border-collapse: collapse; font-variant-numeric: tabular-nums; font-size: 0.93em; }
+th, td { border: 1px solid var(--line); padding: 5px 10px; text-align: left; vertical-align: top; }
+thead th { background: var(--stripe); font-weight: 600; }
+tbody tr:nth-child(even) { background: var(--stripe); }
+figure.plot { margin: 18px 0; border: 1px solid var(--line); border-radius: 6px; padding: 4px; }
+footer { margin-top: 36px; color: var(--muted); font-size: 0.85em; }
+)css";
+
+// Turns the embedded JSON into plotly figures once the library has loaded. The data lives in
+// a JSON script element rather than in JavaScript literals so that it is inert text.
+constexpr std::string_view kInitScript = R"js(
+(function () {
+  var specs = JSON.parse(document.getElementById('geaware-plots').textContent);
+  // No plotly logo and no "Share chart" (uploads to Plotly Cloud): a report stays offline.
+  var config = { responsive: true, displaylogo: false, scrollZoom: false,
+                 modeBarButtonsToRemove: ['sendChartToCloud'] };
+  specs.forEach(function (spec, i) {
+    Plotly.newPlot('geaware-plot-' + i, spec.data, spec.layout, config);
+  });
+})();
+)js";
+
+std::string axisType(AxisType t) { return t == AxisType::kLog ? "\"log\"" : "\"linear\""; }
+
+// One plot as plotly's {data, layout} JSON.
+std::string plotJson(const Plot& plot) {
+  std::string out = "{\"data\":[";
+  for (std::size_t s = 0; s < plot.series.size(); ++s) {
+    const Series& series = plot.series[s];
+    if (s > 0) out += ',';
+    out += "{\"type\":\"scatter\",\"name\":" + jsonString(series.name) +
+           ",\"mode\":" + jsonString(series.mode);
+    if (!series.dash.empty()) out += ",\"line\":{\"dash\":" + jsonString(series.dash) + "}";
+    const auto numbers = [&out](const std::vector<double>& values) {
+      out += '[';
+      for (std::size_t i = 0; i < values.size(); ++i) {
+        if (i > 0) out += ',';
+        out += jsonNumber(values[i]);
+      }
+      out += ']';
+    };
+    out += ",\"x\":";
+    numbers(series.x);
+    out += ",\"y\":";
+    numbers(series.y);
+    out += '}';
+  }
+  out += "],\"layout\":{";
+  out += "\"title\":{\"text\":" + jsonString(plot.title) + "}";
+  out += ",\"xaxis\":{\"title\":{\"text\":" + jsonString(plot.x_label) +
+         "},\"type\":" + axisType(plot.x_axis) + ",\"zeroline\":false}";
+  out += ",\"yaxis\":{\"title\":{\"text\":" + jsonString(plot.y_label) +
+         "},\"type\":" + axisType(plot.y_axis) + ",\"zeroline\":false}";
+  out += ",\"height\":" + std::to_string(plot.height_px);
+  out += ",\"margin\":{\"l\":70,\"r\":30,\"t\":50,\"b\":60}";
+  out += ",\"font\":{\"family\":\"system-ui, 'DejaVu Sans', Arial, sans-serif\"}";
+  out += ",\"hovermode\":\"closest\"";
+  out += "}}";
+  return out;
+}
+
+std::string tableHtml(const Table& table) {
+  std::string out = "<section class=\"table\">\n";
+  if (!table.title.empty()) out += "<h3>" + escapeHtml(table.title) + "</h3>\n";
+  out += "<table>\n";
+  if (!table.header.empty()) {
+    out += "<thead><tr>";
+    for (const auto& h : table.header) out += "<th>" + escapeHtml(h) + "</th>";
+    out += "</tr></thead>\n";
+  }
+  out += "<tbody>\n";
+  for (const auto& row : table.rows) {
+    out += "<tr>";
+    for (const auto& cell : row) out += "<td>" + escapeHtml(cell) + "</td>";
+    out += "</tr>\n";
+  }
+  out += "</tbody>\n</table>\n</section>\n";
+  return out;
+}
+
+bool containsNoCase(std::string_view haystack, std::string_view needle) {
+  const auto it = std::search(haystack.begin(), haystack.end(), needle.begin(), needle.end(),
+                              [](char a, char b) {
+                                return std::tolower(static_cast<unsigned char>(a)) ==
+                                       std::tolower(static_cast<unsigned char>(b));
+                              });
+  return it != haystack.end();
+}
+
+std::string readFile(const std::filesystem::path& file, const char* what) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) {
+    throw std::runtime_error(std::string("report: cannot read ") + what + " '" + file.string() +
+                             "': " + std::strerror(errno) +
+                             " (set GEAWARE_PLOTLY_JS to a plotly.min.js, or rebuild so that "
+                             "CMake bundles it from web/package-lock.json)");
+  }
+  std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (in.bad() || text.empty()) {
+    throw std::runtime_error(std::string("report: ") + what + " '" + file.string() +
+                             "' is empty or unreadable");
+  }
+  return text;
+}
+
+}  // namespace
+
+Page::Page(std::string title) : title_(std::move(title)) {
+  if (title_.empty()) throw std::invalid_argument("report::Page: the title is empty");
+}
+
+void Page::addText(std::string text) { blocks_.emplace_back(Text{std::move(text)}); }
+
+void Page::addHeading(std::string text) { blocks_.emplace_back(Heading{std::move(text)}); }
+
+void Page::addTable(Table table) {
+  for (std::size_t r = 0; r < table.rows.size(); ++r) {
+    if (!table.header.empty() && table.rows[r].size() != table.header.size()) {
+      throw std::invalid_argument("report::Page: table '" + table.title + "' row " +
+                                  std::to_string(r) + " has " +
+                                  std::to_string(table.rows[r].size()) + " cells, the header " +
+                                  std::to_string(table.header.size()));
+    }
+  }
+  blocks_.emplace_back(std::move(table));
+}
+
+void Page::addPlot(Plot plot) {
+  const std::string where = "report::Page: plot '" + plot.title + "'";
+  if (plot.height_px < kMinHeightPx || plot.height_px > kMaxHeightPx) {
+    throw std::invalid_argument(where + ": height_px = " + std::to_string(plot.height_px) +
+                                " is outside [" + std::to_string(kMinHeightPx) + ", " +
+                                std::to_string(kMaxHeightPx) + "]");
+  }
+  for (const Series& s : plot.series) {
+    const std::string series = where + " series '" + s.name + "'";
+    if (s.x.size() != s.y.size()) {
+      throw std::invalid_argument(series + ": x has " + std::to_string(s.x.size()) +
+                                  " values, y has " + std::to_string(s.y.size()));
+    }
+    if (std::find(kModes.begin(), kModes.end(), s.mode) == kModes.end()) {
+      throw std::invalid_argument(series + ": mode '" + s.mode +
+                                  "' is not one of lines, markers, lines+markers");
+    }
+    if (std::find(kDashes.begin(), kDashes.end(), s.dash) == kDashes.end()) {
+      throw std::invalid_argument(series + ": dash '" + s.dash +
+                                  "' is not one of \"\" (solid), dash, dot");
+    }
+  }
+  blocks_.emplace_back(std::move(plot));
+}
+
+std::string Page::html(const std::string& plotly_js) const {
+  // The library is inlined verbatim, so it must not contain anything that ends or nests the
+  // <script> element (HTML spec 4.12.1.3). plotly.min.js has neither; check rather than assume.
+  if (containsNoCase(plotly_js, "</script") || containsNoCase(plotly_js, "<script")) {
+    throw std::runtime_error(
+        "report: the plotting library contains \"<script\" or \"</script\" and cannot be inlined");
+  }
+
+  std::string body;
+  std::string plots_json = "[";
+  int plot_count = 0;
+  for (const Block& block : blocks_) {
+    std::visit(
+        [&](const auto& b) {
+          using B = std::decay_t<decltype(b)>;
+          if constexpr (std::is_same_v<B, Text>) {
+            body += "<p class=\"text\">" + escapeHtml(b.text) + "</p>\n";
+          } else if constexpr (std::is_same_v<B, Heading>) {
+            body += "<h2>" + escapeHtml(b.text) + "</h2>\n";
+          } else if constexpr (std::is_same_v<B, Table>) {
+            body += tableHtml(b);
+          } else {
+            const std::string id = "geaware-plot-" + std::to_string(plot_count);
+            body += "<figure class=\"plot\"><div class=\"plot-area\" id=\"" + id +
+                    "\" style=\"height:" + std::to_string(b.height_px) + "px\"></div></figure>\n";
+            if (plot_count > 0) plots_json += ",\n";
+            plots_json += plotJson(b);
+            ++plot_count;
+          }
+        },
+        block);
+  }
+  plots_json += "]";
+
+  std::string out;
+  out.reserve(plotly_js.size() + body.size() + plots_json.size() + 4096);
+  out += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
+  out += "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
+  out += "<meta name=\"generator\" content=\"geaware report\">\n";
+  out += "<title>" + escapeHtml(title_) + "</title>\n";
+  out += "<style>";
+  out += kStyle;
+  out += "</style>\n<script>\n";
+  out += plotly_js;
+  out += "\n</script>\n</head>\n<body>\n<main>\n";
+  out += "<h1>" + escapeHtml(title_) + "</h1>\n";
+  out += body;
+  out +=
+      "<footer>Written by geaware. Self-contained: opens from disk, needs no network. "
+      "Plots by plotly.js (MIT licence).</footer>\n";
+  out += "</main>\n<script type=\"application/json\" id=\"geaware-plots\">\n";
+  out += plots_json;
+  out += "\n</script>\n<script>";
+  out += kInitScript;
+  out += "</script>\n</body>\n</html>\n";
+  return out;
+}
+
+void Page::write(const std::filesystem::path& html_file) const {
+  const std::string page = html(readFile(plotlyJsPath(), "the plotly.js bundle"));
+  std::ofstream out(html_file, std::ios::binary | std::ios::trunc);
+  if (!out) {
+    throw std::runtime_error("report: cannot write '" + html_file.string() +
+                             "': " + std::strerror(errno));
+  }
+  out.write(page.data(), static_cast<std::streamsize>(page.size()));
+  out.close();
+  if (!out) {
+    throw std::runtime_error("report: writing '" + html_file.string() +
+                             "' failed: " + std::strerror(errno));
+  }
+}
+
+std::filesystem::path plotlyJsPath() {
+  if (const char* env = std::getenv("GEAWARE_PLOTLY_JS"); env != nullptr && *env != '\0') {
+    return env;
+  }
+  return GEAWARE_PLOTLY_JS_BUILD_PATH;
+}
+
+}  // namespace geaware::report
