@@ -1,0 +1,79 @@
+// One full controller update (flat map to throttles) for the paper's configurations.
+// Issue target: ≤ 1 µs median for model/model_indi. Inputs cycle through 1024 samples of the
+// 1 m/s lemniscate at 0.12 m with a perturbed estimate so every branch does real work.
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <benchmark/benchmark.h>
+
+#include "geaware/control/controller.hpp"
+#include "geaware/io/vehicle_file.hpp"
+#include "geaware/traj/lemniscate.hpp"
+
+namespace {
+
+using namespace geaware::control;
+
+const geaware::model::VehicleModel& vehicle() {
+  static const geaware::model::VehicleModel v(geaware::io::builtinVehicle());
+  return v;
+}
+
+const std::vector<ControllerInput>& inputs() {
+  static const std::vector<ControllerInput> in = [] {
+    geaware::traj::LemniscateParams lp;
+    lp.height_m = 0.12;
+    lp.peak_speed_mps = 1.0;
+    lp.half_extent_x_m = 1.5;
+    lp.half_extent_y_m = 0.8;
+    const geaware::traj::Lemniscate traj(lp);
+    std::vector<ControllerInput> out;
+    for (int i = 0; i < 1024; ++i) {
+      ControllerInput c;
+      c.reference = traj.sample(traj.duration() * i / 1024.0);
+      c.estimate.p_W = c.reference.p_W + Eigen::Vector3d(0.01, -0.02, 0.005);
+      c.estimate.v_W = c.reference.v_W * 0.95;
+      c.estimate.q_WB = Eigen::AngleAxisd(0.02 * std::sin(i * 0.1), Eigen::Vector3d::UnitX());
+      c.gyro_B = Eigen::Vector3d(0.05, -0.03, 0.01);
+      c.accel_B = Eigen::Vector3d(0.1, 0.0, 9.81);
+      c.height_m = 0.12;
+      c.height_valid = true;
+      c.rotor_speeds_rpm = Eigen::Vector4d(9100, 9050, 9150, 9080);
+      out.push_back(c);
+    }
+    return out;
+  }();
+  return in;
+}
+
+void runController(benchmark::State& state, AccelerationCompensation acc, TorqueCompensation torque) {
+  ControllerParams p;
+  p.acceleration = acc;
+  p.torque = torque;
+  Controller c(vehicle(), p);
+  const auto& in = inputs();
+  std::size_t i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(c.update(in[i++ & 1023]));
+}
+
+void BM_ControllerModelModelIndi(benchmark::State& s) {
+  runController(s, AccelerationCompensation::kModel, TorqueCompensation::kModelIndi);
+}
+BENCHMARK(BM_ControllerModelModelIndi);
+
+void BM_ControllerModelModel(benchmark::State& s) {
+  runController(s, AccelerationCompensation::kModel, TorqueCompensation::kModel);
+}
+BENCHMARK(BM_ControllerModelModel);
+
+void BM_ControllerNoneNone(benchmark::State& s) {
+  runController(s, AccelerationCompensation::kNone, TorqueCompensation::kNone);
+}
+BENCHMARK(BM_ControllerNoneNone);
+
+void BM_ControllerIndiIndi(benchmark::State& s) {
+  runController(s, AccelerationCompensation::kIndi, TorqueCompensation::kIndi);
+}
+BENCHMARK(BM_ControllerIndiIndi);
+
+}  // namespace

@@ -1,0 +1,131 @@
+#pragma once
+// The ground-effect-aware controller of the paper ("Model-based Controller with Incremental
+// Inversion", SPEC §3), with the acceleration and torque compensation of Table I as two
+// independent switches, so every row of the table is a configuration, not a fork.
+//
+// One update (numbered as in the paper):
+//   1. reference: flat map at the reference and the measured height (flatness/) → a_ref,
+//      ω_ref, ω̇_ref, T_ref;
+//   2. acceleration command a_des = a_ref + K^P·e_p + K^V·e_v − a_D − a_G (model), or the
+//      INDI / Neural-Lander / drag-only variants (eq. 31);
+//   3. desired attitude from a_des and ψ_ref, attitude error ξ_e = ξ̂⁻¹∘ξ_des as an angle
+//      vector, ω_des = K^ξ·ξ_e + ω_ref, ω̇_des = K^ω·(ω_des − ω_f) + ω̇_ref (eq. 32);
+//   4. thrust T_des = m·(a_des + g·z_W)ᵀ·ẑ_B, torque by the selected compensation (eq. 33);
+//   5. rotor speeds N² = M⁻¹·[T; τ] with saturation that keeps thrust, then roll/pitch,
+//      before yaw; throttles from the inverse throttle curve plus the shared PI correction on
+//      the thrust-acceleration error (FACTS.md, supplementary section 3).
+// No allocation and no exceptions in update(); invalid inputs are flagged and never reach the
+// motors as NaN.
+
+#include <array>
+#include <cstdint>
+#include <memory>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "geaware/control/controller_params.hpp"
+#include "geaware/control/low_pass.hpp"
+#include "geaware/control/residual_force.hpp"
+#include "geaware/flatness/flat_map.hpp"
+#include "geaware/model/vehicle_model.hpp"
+#include "geaware/traj/flat_output.hpp"
+
+namespace geaware::control {
+
+/// The state estimate the controller flies on (from estimation/, never the simulator's truth).
+struct StateEstimate {
+  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();             ///< position [m]
+  Eigen::Vector3d v_W = Eigen::Vector3d::Zero();             ///< velocity [m/s]
+  Eigen::Quaterniond q_WB = Eigen::Quaterniond::Identity();  ///< attitude, body → world
+};
+
+/// Everything the controller reads in one update.
+struct ControllerInput {
+  double t_s = 0.0;                       ///< time [s] (monotonic; used for logging only)
+  traj::FlatOutput reference;             ///< flat outputs of the trajectory at t
+  StateEstimate estimate;
+  Eigen::Vector3d gyro_B = Eigen::Vector3d::Zero();   ///< bias-corrected body rates [rad/s]
+  Eigen::Vector3d accel_B = Eigen::Vector3d::Zero();  ///< bias-corrected specific force [m/s²]
+  double height_m = 0.0;                  ///< rotor-plane height from the ranger [m]
+  bool height_valid = false;              ///< false: no reading this tick (missing or rejected)
+  Eigen::Vector4d rotor_speeds_rpm = Eigen::Vector4d::Zero();  ///< measured (telemetry) [rpm]
+};
+
+/// Conditions met during an update (bit flags).
+enum ControllerFlag : std::uint32_t {
+  kFlagNone = 0,
+  kFlagNonFiniteInput = 1u << 0,     ///< a NaN/∞ in the estimate, IMU or reference: hover output
+  kFlagHeightInvalid = 1u << 1,      ///< height missing or implausible: last valid height used
+  kFlagReferenceInvalid = 1u << 2,   ///< the flat map refused the reference
+  kFlagTiltLimited = 1u << 3,        ///< commanded tilt clipped to max_tilt_rad
+  kFlagYawSaturated = 1u << 4,       ///< yaw torque reduced to fit the rotor-speed range
+  kFlagRollPitchSaturated = 1u << 5, ///< roll/pitch torque reduced to fit
+  kFlagThrustSaturated = 1u << 6,    ///< thrust clipped to the rotor-speed range
+};
+
+/// Commands of one update: the throttles and every intermediate for logging.
+struct ControllerOutput {
+  std::array<double, 4> throttle{};                              ///< per motor, [0, 1]
+  Eigen::Vector3d a_des_W = Eigen::Vector3d::Zero();             ///< acceleration command [m/s²]
+  double thrust_des_N = 0.0;                                     ///< T_des [N]
+  Eigen::Quaterniond q_des_WB = Eigen::Quaterniond::Identity();  ///< desired attitude
+  Eigen::Vector3d attitude_error = Eigen::Vector3d::Zero();      ///< ξ_e as angle vector [rad]
+  Eigen::Vector3d w_des_B = Eigen::Vector3d::Zero();             ///< [rad/s]
+  Eigen::Vector3d w_dot_des_B = Eigen::Vector3d::Zero();         ///< [rad/s²]
+  Eigen::Vector3d tau_des_B = Eigen::Vector3d::Zero();           ///< torque command [N·m]
+  Eigen::Vector3d tau_hat_B = Eigen::Vector3d::Zero();           ///< filtered τ̂_B from rotor speeds [N·m]
+  Eigen::Vector4d n_des_rpm = Eigen::Vector4d::Zero();           ///< rotor-speed command [rpm]
+  double height_used_m = 0.0;                                    ///< height the models used [m]
+  std::uint32_t flags = kFlagNone;                               ///< ControllerFlag bits
+};
+
+class Controller {
+ public:
+  /// Validates params (throws model::InvalidParameters); `residual` is required for
+  /// AccelerationCompensation::kNeural (throws std::invalid_argument otherwise).
+  Controller(const model::VehicleModel& vehicle, ControllerParams params,
+             std::shared_ptr<const ResidualForceModel> residual = nullptr);
+
+  /// One control step at params().rate_hz. No allocation, no exceptions.
+  [[nodiscard]] ControllerOutput update(const ControllerInput& in) noexcept;
+
+  /// Clears filters and integrators (e.g. before a new flight).
+  void reset() noexcept;
+
+  [[nodiscard]] const ControllerParams& params() const noexcept { return params_; }
+
+ private:
+  /// Throttles that hold a level hover at the last valid height: the safe output for a tick
+  /// whose inputs cannot be trusted.
+  [[nodiscard]] ControllerOutput fallback(std::uint32_t flags) const noexcept;
+  /// Splits [T; τ] into rotor speeds within the throttle curve's range (thrust, then
+  /// roll/pitch, then yaw) and sets the saturation flags.
+  [[nodiscard]] Eigen::Vector4d allocate(double thrust_N, const Eigen::Vector3d& tau_B,
+                                         std::uint32_t& flags) const noexcept;
+
+  ControllerParams params_;
+  std::shared_ptr<const ResidualForceModel> residual_;
+  double mass_kg_;
+  Eigen::Vector3d inertia_kgm2_;
+  model::GroundEffectModel ground_effect_;
+  model::RotorDragModel drag_;
+  model::Mixer mixer_;
+  model::ThrottleCurve throttle_curve_;
+  double k_T_N_per_rpm2_;
+  flatness::FlatMap reference_map_;
+  double dt_s_;
+
+  // Filters in step (one type, one cut-off): ω (differentiated for ω̇_f) with τ̂_B, and the
+  // measured acceleration with the rotor-speed thrust vector for translational INDI.
+  LowPass2<3> w_filter_;
+  LowPass2<3> tau_hat_filter_;
+  LowPass2<3> accel_filter_;
+  LowPass2<3> thrust_vector_filter_;
+  Eigen::Vector3d last_w_f_ = Eigen::Vector3d::Zero();
+  bool have_last_w_ = false;
+  double thrust_pi_integral_ = 0.0;
+  double last_height_m_;
+};
+
+}  // namespace geaware::control

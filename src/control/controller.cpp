@@ -1,0 +1,274 @@
+#include "geaware/control/controller.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "geaware/model/units.hpp"
+
+namespace geaware::control {
+namespace {
+
+using model::kGravity;
+
+/// Height assumed before the first valid ranger reading: far enough that every ground-effect
+/// term has vanished (F_G(100 m) ≈ 7e-7), finite so the models stay finite.
+constexpr double kFarFromGroundM = 100.0;
+
+const ControllerParams& validated(const ControllerParams& p) {
+  auto errors = p.validate();
+  if (!errors.empty()) throw model::InvalidParameters(std::move(errors));
+  return p;
+}
+
+/// Which flat-map terms each configuration feeds forward.
+flatness::GroundEffectTerms referenceTerms(const ControllerParams& p) {
+  const bool acc = p.acceleration == AccelerationCompensation::kModel;
+  const bool torque = p.torque == TorqueCompensation::kModel || p.torque == TorqueCompensation::kModelIndi;
+  return {acc, acc, torque};
+}
+
+bool usesJPrime(TorqueCompensation t) {
+  return t == TorqueCompensation::kModel || t == TorqueCompensation::kModelIndi;
+}
+
+bool usesIncrementalTorque(TorqueCompensation t) {
+  return t == TorqueCompensation::kIndi || t == TorqueCompensation::kModelIndi;
+}
+
+/// Attitude error ξ_e = ξ̂⁻¹∘ξ_des as an angle vector (paper eq. 32): angle·axis of the error
+/// rotation, taking the short way round (q and −q are the same attitude).
+Eigen::Vector3d attitudeErrorVector(const Eigen::Quaterniond& q_est, const Eigen::Quaterniond& q_des) {
+  Eigen::Quaterniond e = q_est.conjugate() * q_des;
+  if (e.w() < 0.0) e.coeffs() = -e.coeffs();
+  const Eigen::Vector3d v = e.vec();
+  const double s = v.norm();
+  if (s < 1e-9) return 2.0 * v;  // small-angle limit of 2·atan2(s, w)/s·v
+  return (2.0 * std::atan2(s, e.w()) / s) * v;
+}
+
+/// Rotation with body z along `z_des` and body x perpendicular to the heading's y axis.
+Eigen::Matrix3d attitudeFrom(const Eigen::Vector3d& z_des, double yaw) {
+  const Eigen::Vector3d y_C(-std::sin(yaw), std::cos(yaw), 0.0);
+  Eigen::Vector3d x = y_C.cross(z_des);
+  const double n = x.norm();
+  // z_des ⟂ y_C is excluded by the tilt limit (< 90°), so n > 0.
+  x /= n;
+  Eigen::Matrix3d R;
+  R.col(0) = x;
+  R.col(1) = z_des.cross(x);
+  R.col(2) = z_des;
+  return R;
+}
+
+}  // namespace
+
+Controller::Controller(const model::VehicleModel& vehicle, ControllerParams params,
+                       std::shared_ptr<const ResidualForceModel> residual)
+    : params_(validated(params)),
+      residual_(std::move(residual)),
+      mass_kg_(vehicle.params().mass_kg),
+      inertia_kgm2_(vehicle.params().inertia_kgm2),
+      ground_effect_(vehicle.groundEffect()),
+      drag_(vehicle.drag()),
+      mixer_(vehicle.mixer()),
+      throttle_curve_(vehicle.throttleCurve()),
+      k_T_N_per_rpm2_(vehicle.params().rotor.k_T_N_per_rpm2),
+      reference_map_(vehicle, referenceTerms(params_)),
+      dt_s_(1.0 / params_.rate_hz),
+      w_filter_(params_.filter_cutoff_hz, params_.rate_hz),
+      tau_hat_filter_(params_.filter_cutoff_hz, params_.rate_hz),
+      accel_filter_(params_.filter_cutoff_hz, params_.rate_hz),
+      thrust_vector_filter_(params_.filter_cutoff_hz, params_.rate_hz),
+      last_height_m_(kFarFromGroundM) {
+  if (params_.acceleration == AccelerationCompensation::kNeural && !residual_) {
+    throw std::invalid_argument("acceleration compensation 'neural' needs a residual-force model");
+  }
+}
+
+void Controller::reset() noexcept {
+  const ControllerParams& p = params_;
+  w_filter_ = LowPass2<3>(p.filter_cutoff_hz, p.rate_hz);
+  tau_hat_filter_ = LowPass2<3>(p.filter_cutoff_hz, p.rate_hz);
+  accel_filter_ = LowPass2<3>(p.filter_cutoff_hz, p.rate_hz);
+  thrust_vector_filter_ = LowPass2<3>(p.filter_cutoff_hz, p.rate_hz);
+  have_last_w_ = false;
+  thrust_pi_integral_ = 0.0;
+  last_height_m_ = kFarFromGroundM;
+}
+
+ControllerOutput Controller::fallback(std::uint32_t flags) const noexcept {
+  ControllerOutput out;
+  out.flags = flags;
+  out.height_used_m = last_height_m_;
+  out.thrust_des_N = mass_kg_ * kGravity / (1.0 + ground_effect_.thrustRatio(last_height_m_));
+  const double n = std::sqrt(out.thrust_des_N / (4.0 * k_T_N_per_rpm2_));
+  out.n_des_rpm.setConstant(n);
+  out.throttle.fill(throttle_curve_.throttle(n));
+  return out;
+}
+
+Eigen::Vector4d Controller::allocate(double thrust_N, const Eigen::Vector3d& tau_B,
+                                     std::uint32_t& flags) const noexcept {
+  const double lo = throttle_curve_.minSpeedRpm() * throttle_curve_.minSpeedRpm();
+  const double hi = throttle_curve_.maxSpeedRpm() * throttle_curve_.maxSpeedRpm();
+  const Eigen::Matrix4d& Minv = mixer_.inverse();
+
+  // Thrust first: equal speeds, clipped to the range.
+  Eigen::Vector4d n_sq = Minv.col(0) * thrust_N;
+  const double uniform = n_sq(0);
+  if (uniform < lo || uniform > hi) {
+    n_sq.setConstant(std::clamp(uniform, lo, hi));
+    flags |= kFlagThrustSaturated;
+  }
+  // Then roll/pitch, then yaw: each scaled by the largest s ∈ [0, 1] that keeps every rotor
+  // inside [lo, hi] given what is already allocated.
+  const auto addScaled = [&](const Eigen::Vector4d& delta, std::uint32_t flag) {
+    double s = 1.0;
+    for (int i = 0; i < 4; ++i) {
+      if (delta(i) > 0.0) s = std::min(s, (hi - n_sq(i)) / delta(i));
+      if (delta(i) < 0.0) s = std::min(s, (lo - n_sq(i)) / delta(i));
+    }
+    s = std::max(s, 0.0);
+    if (s < 1.0) flags |= flag;
+    n_sq += s * delta;
+  };
+  addScaled(Minv.col(1) * tau_B.x() + Minv.col(2) * tau_B.y(), kFlagRollPitchSaturated);
+  addScaled(Minv.col(3) * tau_B.z(), kFlagYawSaturated);
+  return n_sq.cwiseMax(lo).cwiseMin(hi);  // guards rounding at the bounds
+}
+
+ControllerOutput Controller::update(const ControllerInput& in) noexcept {
+  std::uint32_t flags = kFlagNone;
+
+  // 0. Guard the inputs: nothing non-finite may reach the motors.
+  const double q_norm = in.estimate.q_WB.norm();
+  if (!in.reference.allFinite() || !in.estimate.p_W.allFinite() || !in.estimate.v_W.allFinite() ||
+      !in.estimate.q_WB.coeffs().allFinite() || !(q_norm > 0.5) || !in.gyro_B.allFinite() ||
+      !in.accel_B.allFinite() || !in.rotor_speeds_rpm.allFinite()) {
+    return fallback(kFlagNonFiniteInput);
+  }
+  // A height that is missing, non-finite or negative keeps the last valid one.
+  if (in.height_valid && std::isfinite(in.height_m) && in.height_m >= 0.0) {
+    last_height_m_ = std::min(in.height_m, kFarFromGroundM);
+  } else {
+    flags |= kFlagHeightInvalid;
+  }
+  const double h = last_height_m_;
+
+  // 1. Reference from the flat map at the measured height.
+  const flatness::FlatState ref = reference_map_.evaluate(in.reference, h);
+  if (!ref.ok()) return fallback(flags | kFlagReferenceInvalid);
+
+  const Eigen::Quaterniond q_est = in.estimate.q_WB.normalized();
+  const Eigen::Matrix3d R = q_est.toRotationMatrix();
+  const Eigen::Vector3d z_B = R.col(2);
+
+  // Filters, advanced every tick so that they stay in step whatever the configuration.
+  const Eigen::Vector3d w_f = w_filter_.update(in.gyro_B);
+  const Eigen::Vector3d w_dot_f = have_last_w_ ? Eigen::Vector3d((w_f - last_w_f_) / dt_s_)
+                                               : Eigen::Vector3d::Zero();
+  last_w_f_ = w_f;
+  have_last_w_ = true;
+  const Eigen::Vector4d n_sq_meas = in.rotor_speeds_rpm.cwiseAbs2();
+  const Eigen::Vector4d wrench_meas = mixer_.wrench(n_sq_meas);
+  const Eigen::Vector3d tau_hat = tau_hat_filter_.update(wrench_meas.tail<3>());
+  const Eigen::Vector3d a_meas_W = R * in.accel_B - Eigen::Vector3d(0.0, 0.0, kGravity);
+  const Eigen::Vector3d a_f = accel_filter_.update(a_meas_W);
+  const Eigen::Vector3d f_f = thrust_vector_filter_.update(wrench_meas(0) / mass_kg_ * z_B);
+
+  // 2. Acceleration command (paper eq. 31).
+  const traj::FlatOutput& r = in.reference;
+  Eigen::Vector3d a_des = r.a_W + params_.k_p_per_s2.cwiseProduct(r.p_W - in.estimate.p_W) +
+                          params_.k_v_per_s.cwiseProduct(r.v_W - in.estimate.v_W);
+  // Desired specific thrust vector: the acceleration the rotors must give.
+  Eigen::Vector3d f_cmd = Eigen::Vector3d::Zero();
+  switch (params_.acceleration) {
+    case AccelerationCompensation::kNone:
+    case AccelerationCompensation::kModel:
+    case AccelerationCompensation::kNeural: {
+      const bool model = params_.acceleration == AccelerationCompensation::kModel;
+      const Eigen::Vector2d d = model ? drag_.coefficients(h) : drag_.highAltitudeCoefficients();
+      // a_D = −R·(D/m)·Rᵀ·v_ref: the drag to be overcome is added back.
+      a_des -= model::RotorDragModel::force_W(R, r.v_W, d) / mass_kg_;
+      if (model) a_des -= ref.thrust_N / mass_kg_ * ground_effect_.thrustRatio(h) * z_B;  // a_G
+      f_cmd = a_des + Eigen::Vector3d(0.0, 0.0, kGravity);
+      if (params_.acceleration == AccelerationCompensation::kNeural) {
+        // Shi et al. 2019: the residual depends on the rotor speeds the command produces, so
+        // the command is found by fixed-point iteration starting from the measured speeds.
+        ResidualFeatures features{h, in.estimate.v_W, q_est, in.rotor_speeds_rpm};
+        Eigen::Vector3d f_nn = Eigen::Vector3d::Zero();
+        for (int it = 0; it < params_.neural_iterations; ++it) {
+          f_nn = residual_->predict_W(features);
+          if (!f_nn.allFinite()) f_nn.setZero();
+          const double thrust = std::max(mass_kg_ * (f_cmd - f_nn / mass_kg_).dot(z_B), 0.0);
+          features.rotor_speeds_rpm.setConstant(std::sqrt(thrust / (4.0 * k_T_N_per_rpm2_)));
+        }
+        a_des -= f_nn / mass_kg_;
+        f_cmd -= f_nn / mass_kg_;
+      }
+      break;
+    }
+    case AccelerationCompensation::kIndi:
+      // Tal & Karaman 2020: increment the filtered thrust vector by the acceleration still
+      // missing; everything the rotors' thrust does not explain (drag, ground) is measured.
+      f_cmd = f_f + (a_des - a_f);
+      break;
+  }
+
+  // Tilt limit: keep the vertical component, shorten the horizontal one.
+  if (f_cmd.z() < 1e-3) f_cmd.z() = 1e-3;
+  const double horiz = f_cmd.head<2>().norm();
+  const double max_horiz = f_cmd.z() * std::tan(params_.max_tilt_rad);
+  if (horiz > max_horiz) {
+    f_cmd.head<2>() *= max_horiz / horiz;
+    flags |= kFlagTiltLimited;
+  }
+
+  // 3. Attitude, body-rate and body-acceleration commands (paper eq. 32).
+  const Eigen::Vector3d z_des = f_cmd.normalized();
+  const Eigen::Quaterniond q_des(attitudeFrom(z_des, r.yaw_rad));
+  const Eigen::Vector3d xi_e = attitudeErrorVector(q_est, q_des);
+  const Eigen::Vector3d w_des = params_.k_xi_per_s.cwiseProduct(xi_e) + ref.w_B;
+  const Eigen::Vector3d w_dot_des = params_.k_w_per_s.cwiseProduct(w_des - w_f) + ref.w_dot_B;
+
+  // 4. Thrust and torque (paper eq. 33, 34).
+  const double thrust = std::max(mass_kg_ * f_cmd.dot(z_B), 0.0);
+  const Eigen::Vector3d J = usesJPrime(params_.torque) ? ground_effect_.levelingInertiaDiagonal(h)
+                                                       : inertia_kgm2_;
+  Eigen::Vector3d tau;
+  if (usesIncrementalTorque(params_.torque)) {
+    tau = tau_hat + J.cwiseProduct(w_dot_des - w_dot_f);
+  } else {
+    tau = J.cwiseProduct(w_dot_des) + w_des.cross(J.cwiseProduct(w_des));
+  }
+
+  // 5. Rotor speeds and throttles: inverse throttle curve plus the shared PI correction on the
+  //    thrust-acceleration error T_a^E = (Σk_T·n_des² − Σk_T·n²)/m (FACTS.md).
+  const Eigen::Vector4d n_sq_des = allocate(thrust, tau, flags);
+  const double thrust_acc_error = k_T_N_per_rpm2_ * (n_sq_des.sum() - n_sq_meas.sum()) / mass_kg_;
+  const double i_limit = params_.thrust_pi_ki > 0.0 ? params_.thrust_pi_limit / params_.thrust_pi_ki : 0.0;
+  thrust_pi_integral_ = std::clamp(thrust_pi_integral_ + thrust_acc_error * dt_s_, -i_limit, i_limit);
+  const double t_e = std::clamp(params_.thrust_pi_kp * thrust_acc_error +
+                                    params_.thrust_pi_ki * thrust_pi_integral_,
+                                -params_.thrust_pi_limit, params_.thrust_pi_limit);
+
+  ControllerOutput out;
+  out.n_des_rpm = n_sq_des.cwiseSqrt();
+  for (int i = 0; i < 4; ++i) {
+    out.throttle[static_cast<std::size_t>(i)] = std::clamp(throttle_curve_.throttle(out.n_des_rpm(i)) + t_e, 0.0, 1.0);
+  }
+  out.a_des_W = a_des;
+  out.thrust_des_N = thrust;
+  out.q_des_WB = q_des;
+  out.attitude_error = xi_e;
+  out.w_des_B = w_des;
+  out.w_dot_des_B = w_dot_des;
+  out.tau_des_B = tau;
+  out.tau_hat_B = tau_hat;
+  out.height_used_m = h;
+  out.flags = flags;
+  return out;
+}
+
+}  // namespace geaware::control

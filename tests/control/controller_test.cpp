@@ -1,0 +1,268 @@
+// The controller on closed-form cases: hover equilibrium, feedback directions, attitude error,
+// incremental-inversion algebra, allocation saturation, and guarded inputs.
+#include "geaware/control/controller.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include "geaware/model/units.hpp"
+#include "geaware_test/eigen_matchers.hpp"
+#include "geaware_test/paper_vehicle.hpp"
+
+namespace {
+
+using namespace geaware::control;
+using geaware::model::kGravity;
+using geaware_test::paperVehicle;
+
+ControllerParams paramsFor(AccelerationCompensation acc, TorqueCompensation torque) {
+  ControllerParams p;
+  p.acceleration = acc;
+  p.torque = torque;
+  return p;
+}
+
+/// Perfect hover at height h: estimate on the reference, IMU reading gravity, rotor speeds at
+/// the hover speed with ground effect.
+ControllerInput hoverInput(double h) {
+  ControllerInput in;
+  in.reference.p_W = Eigen::Vector3d(0.5, 0.5, h);
+  in.estimate.p_W = in.reference.p_W;
+  in.accel_B = Eigen::Vector3d(0.0, 0.0, kGravity);
+  in.height_m = h;
+  in.height_valid = true;
+  in.rotor_speeds_rpm.setConstant(paperVehicle().hoverSpeedRpm(h));
+  return in;
+}
+
+const AccelerationCompensation kAllAcc[] = {AccelerationCompensation::kNone, AccelerationCompensation::kIndi,
+                                            AccelerationCompensation::kModel};
+const TorqueCompensation kAllTorque[] = {TorqueCompensation::kNone, TorqueCompensation::kModel,
+                                         TorqueCompensation::kIndi, TorqueCompensation::kModelIndi};
+
+TEST(Controller, HoverIsAnEquilibriumForEveryConfiguration) {
+  for (auto acc : kAllAcc) {
+    for (auto torque : kAllTorque) {
+      Controller c(paperVehicle(), paramsFor(acc, torque));
+      // At 2 m the models agree with the measured hover; several ticks let the filters settle.
+      ControllerOutput out;
+      for (int k = 0; k < 20; ++k) out = c.update(hoverInput(2.0));
+      SCOPED_TRACE(std::string(toString(acc)) + "/" + toString(torque));
+      EXPECT_EQ(out.flags, kFlagNone);
+      EXPECT_MATRIX_NEAR(out.attitude_error, Eigen::Vector3d::Zero(), 1e-12);
+      EXPECT_MATRIX_NEAR(out.tau_des_B, Eigen::Vector3d::Zero(), 1e-9);
+      EXPECT_NEAR(out.thrust_des_N, paperVehicle().params().mass_kg * kGravity, 0.05);
+      const double t_hover = paperVehicle().throttleCurve().throttle(paperVehicle().hoverSpeedRpm(2.0));
+      for (double t : out.throttle) EXPECT_NEAR(t, t_hover, 2e-3);
+    }
+  }
+}
+
+TEST(Controller, ModelCompensationTakesTheGroundsThrustOffTheCommand) {
+  Controller model(paperVehicle(), paramsFor(AccelerationCompensation::kModel, TorqueCompensation::kNone));
+  Controller none(paperVehicle(), paramsFor(AccelerationCompensation::kNone, TorqueCompensation::kNone));
+  const double h = 0.12;
+  const auto& ge = paperVehicle().groundEffect();
+  const ControllerOutput a = model.update(hoverInput(h));
+  const ControllerOutput b = none.update(hoverInput(h));
+  const double mg = paperVehicle().params().mass_kg * kGravity;
+  // The paper's feed-forward: T = m·g/(1 + F_G(h)) at hover; without it, m·g.
+  EXPECT_NEAR(a.thrust_des_N, mg / (1.0 + ge.thrustRatio(h)), 1e-9);
+  EXPECT_NEAR(b.thrust_des_N, mg, 1e-9);
+  EXPECT_LT(a.n_des_rpm(0), b.n_des_rpm(0));
+}
+
+TEST(Controller, PositionAndVelocityErrorsPushTowardsTheReference) {
+  Controller c(paperVehicle(), paramsFor(AccelerationCompensation::kNone, TorqueCompensation::kNone));
+  ControllerInput in = hoverInput(2.0);
+  in.estimate.p_W.x() -= 0.1;  // behind in x
+  in.estimate.v_W.y() = 0.2;   // drifting in +y
+  const ControllerOutput out = c.update(in);
+  const auto& p = c.params();
+  // a_des = K^P·e_p + K^V·e_v (+ zero drag at zero reference velocity).
+  EXPECT_MATRIX_NEAR(out.a_des_W, Eigen::Vector3d(p.k_p_per_s2.x() * 0.1, -p.k_v_per_s.y() * 0.2, 0.0), 1e-12);
+  // Desired attitude pitches forward (+x acceleration) and rolls towards −y.
+  const Eigen::Vector3d z_des = out.q_des_WB.toRotationMatrix().col(2);
+  EXPECT_GT(z_des.x(), 0.0);
+  EXPECT_LT(z_des.y(), 0.0);
+}
+
+TEST(Controller, AttitudeErrorIsTheRotationAngleAndTakesTheShortWay) {
+  Controller c(paperVehicle(), paramsFor(AccelerationCompensation::kNone, TorqueCompensation::kNone));
+  // Estimated attitude rolled by 0.3 rad, reference level: error = −0.3 about x (in the body).
+  ControllerInput in = hoverInput(2.0);
+  in.estimate.q_WB = Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()));
+  const ControllerOutput a = c.update(in);
+  EXPECT_MATRIX_NEAR(a.attitude_error, Eigen::Vector3d(-0.3, 0.0, 0.0), 1e-9);
+  // The same attitude given as −q gives the same error (antipodal quaternions).
+  Controller c2(paperVehicle(), paramsFor(AccelerationCompensation::kNone, TorqueCompensation::kNone));
+  in.estimate.q_WB.coeffs() = -in.estimate.q_WB.coeffs();
+  EXPECT_MATRIX_NEAR(c2.update(in).attitude_error, a.attitude_error, 1e-12);
+  // Yaw error of 170° about z, beyond 90°, stays the shortest rotation.
+  Controller c3(paperVehicle(), paramsFor(AccelerationCompensation::kNone, TorqueCompensation::kNone));
+  in = hoverInput(2.0);
+  in.reference.yaw_rad = 170.0 * geaware::model::kDegToRad;
+  EXPECT_MATRIX_NEAR(c3.update(in).attitude_error, Eigen::Vector3d(0, 0, 170.0 * geaware::model::kDegToRad), 1e-9);
+}
+
+TEST(Controller, IncrementalInversionWithMatchingAccelerationKeepsTheMeasuredTorque) {
+  // τ = τ̂_B + J'(ω̇_des − ω̇_f): when the body already accelerates as desired the command is
+  // the measured torque, whatever J' is (STYLE.md closed form).
+  ControllerParams p = paramsFor(AccelerationCompensation::kNone, TorqueCompensation::kModelIndi);
+  Controller c(paperVehicle(), p);
+  ControllerInput in = hoverInput(0.18);
+  // Rotor speeds with a roll-torque difference, held long enough for τ̂ to settle.
+  in.rotor_speeds_rpm += Eigen::Vector4d(-100, 100, 100, -100);
+  ControllerOutput out;
+  for (int k = 0; k < 100; ++k) out = c.update(in);
+  const Eigen::Vector3d tau_meas = paperVehicle().mixer().wrench(in.rotor_speeds_rpm.cwiseAbs2()).tail<3>();
+  EXPECT_MATRIX_NEAR(out.tau_hat_B, tau_meas, 1e-9);
+  // Level, no rates, zero reference: ω̇_des = 0 = ω̇_f, so τ_des = τ̂_B.
+  EXPECT_MATRIX_NEAR(out.tau_des_B, tau_meas, 1e-9);
+}
+
+TEST(Controller, ModelTorqueUsesTheGroundEffectInertia) {
+  ControllerInput in = hoverInput(0.186);
+  in.estimate.q_WB = Eigen::Quaterniond(Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitX()));
+  Controller plain(paperVehicle(), paramsFor(AccelerationCompensation::kNone, TorqueCompensation::kNone));
+  Controller model(paperVehicle(), paramsFor(AccelerationCompensation::kNone, TorqueCompensation::kModel));
+  const ControllerOutput a = plain.update(in);
+  const ControllerOutput b = model.update(in);
+  const Eigen::Vector3d Jp = paperVehicle().groundEffect().levelingInertiaDiagonal(0.186);
+  const Eigen::Vector3d J = paperVehicle().params().inertia_kgm2;
+  // Same ω̇_des, torque scaled by J'x/Jx in roll.
+  EXPECT_MATRIX_NEAR(a.w_dot_des_B, b.w_dot_des_B, 1e-12);
+  EXPECT_NEAR(b.tau_des_B.x() / a.tau_des_B.x(), Jp.x() / J.x(), 1e-6);
+  EXPECT_GT(Jp.x() / J.x(), 1.03);
+}
+
+TEST(Controller, AllocationKeepsThrustAndRollPitchBeforeYaw) {
+  Controller c(paperVehicle(), paramsFor(AccelerationCompensation::kNone, TorqueCompensation::kNone));
+  ControllerInput in = hoverInput(2.0);
+  // A huge yaw error asks for more yaw torque than the rotors can give at hover thrust.
+  in.reference.yaw_rad = 3.0;
+  in.reference.yaw_rate_radps = 20.0;
+  const ControllerOutput out = c.update(in);
+  EXPECT_TRUE(out.flags & kFlagYawSaturated);
+  EXPECT_FALSE(out.flags & kFlagThrustSaturated);
+  const Eigen::Vector4d w = paperVehicle().mixer().wrench(out.n_des_rpm.cwiseAbs2());
+  EXPECT_NEAR(w(0), out.thrust_des_N, 1e-6 * out.thrust_des_N);  // thrust kept exactly
+  EXPECT_NEAR(w(1), out.tau_des_B.x(), 1e-9);                    // roll kept
+  EXPECT_NEAR(w(2), out.tau_des_B.y(), 1e-9);                    // pitch kept
+  EXPECT_LT(std::abs(w(3)), std::abs(out.tau_des_B.z()));        // yaw reduced
+  EXPECT_GT(w(3) * out.tau_des_B.z(), 0.0);                      // but same sign
+  const double n_max = paperVehicle().throttleCurve().maxSpeedRpm();
+  const double n_min = paperVehicle().throttleCurve().minSpeedRpm();
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_LE(out.n_des_rpm(i), n_max + 1e-6);
+    EXPECT_GE(out.n_des_rpm(i), n_min - 1e-6);
+  }
+}
+
+TEST(Controller, ThrustBeyondTheMotorsIsClippedAndFlagged) {
+  Controller c(paperVehicle(), paramsFor(AccelerationCompensation::kNone, TorqueCompensation::kNone));
+  ControllerInput in = hoverInput(2.0);
+  in.reference.a_W.z() = 4.0 * kGravity;  // 5·m·g > the 62 N the rotors can give
+  const ControllerOutput out = c.update(in);
+  EXPECT_TRUE(out.flags & kFlagThrustSaturated);
+  for (double t : out.throttle) EXPECT_LE(t, 1.0);
+}
+
+TEST(Controller, NonFiniteInputsNeverReachTheMotors) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (auto acc : kAllAcc) {
+    for (auto torque : kAllTorque) {
+      Controller c(paperVehicle(), paramsFor(acc, torque));
+      for (int field = 0; field < 6; ++field) {
+        ControllerInput in = hoverInput(0.5);
+        switch (field) {
+          case 0: in.estimate.p_W.x() = nan; break;
+          case 1: in.estimate.q_WB.coeffs().setConstant(nan); break;
+          case 2: in.gyro_B.y() = nan; break;
+          case 3: in.accel_B.z() = std::numeric_limits<double>::infinity(); break;
+          case 4: in.rotor_speeds_rpm(2) = nan; break;
+          case 5: in.reference.j_W.x() = nan; break;
+        }
+        const ControllerOutput out = c.update(in);
+        EXPECT_TRUE(out.flags & kFlagNonFiniteInput) << "field " << field;
+        for (double t : out.throttle) {
+          EXPECT_TRUE(std::isfinite(t)) << "field " << field;
+          EXPECT_GE(t, 0.0);
+          EXPECT_LE(t, 1.0);
+        }
+        // And the controller is not poisoned: the next good tick is clean.
+        const ControllerOutput next = c.update(hoverInput(0.5));
+        EXPECT_EQ(next.flags & kFlagNonFiniteInput, 0u);
+        for (double t : next.throttle) EXPECT_TRUE(std::isfinite(t));
+      }
+    }
+  }
+}
+
+TEST(Controller, MissingHeightKeepsTheLastValidOneAndIsFlagged) {
+  Controller c(paperVehicle(), paramsFor(AccelerationCompensation::kModel, TorqueCompensation::kModelIndi));
+  (void)c.update(hoverInput(0.15));
+  for (double bad : {-1.0, std::nan("")}) {
+    ControllerInput in = hoverInput(0.15);
+    in.height_m = bad;
+    const ControllerOutput out = c.update(in);
+    EXPECT_TRUE(out.flags & kFlagHeightInvalid);
+    EXPECT_DOUBLE_EQ(out.height_used_m, 0.15);
+    for (double t : out.throttle) EXPECT_TRUE(std::isfinite(t));
+  }
+  ControllerInput in = hoverInput(0.15);
+  in.height_valid = false;
+  EXPECT_TRUE(c.update(in).flags & kFlagHeightInvalid);
+  // Before any valid height the models assume flight far from the ground.
+  Controller fresh(paperVehicle(), paramsFor(AccelerationCompensation::kModel, TorqueCompensation::kModel));
+  in.height_valid = false;
+  const ControllerOutput out = fresh.update(in);
+  EXPECT_NEAR(out.thrust_des_N, paperVehicle().params().mass_kg * kGravity, 1e-3);
+}
+
+TEST(Controller, ThrottleCorrectionClosesTheThrustGap) {
+  // Motors turning slower than commanded (a weak battery): the shared PI raises every throttle.
+  Controller c(paperVehicle(), paramsFor(AccelerationCompensation::kNone, TorqueCompensation::kNone));
+  ControllerInput in = hoverInput(2.0);
+  const ControllerOutput first = c.update(in);
+  in.rotor_speeds_rpm *= 0.97;
+  ControllerOutput later;
+  for (int k = 0; k < 200; ++k) later = c.update(in);
+  for (int i = 0; i < 4; ++i) EXPECT_GT(later.throttle[i], first.throttle[i]);
+  // Bounded by thrust_pi_limit.
+  EXPECT_LE(later.throttle[0] - first.throttle[0], c.params().thrust_pi_limit + 1e-12);
+}
+
+TEST(Controller, NeuralNeedsAModelAndUsesItsPrediction) {
+  ControllerParams p = paramsFor(AccelerationCompensation::kNeural, TorqueCompensation::kNone);
+  EXPECT_THROW(Controller(paperVehicle(), p), std::invalid_argument);
+  struct ConstantUp final : ResidualForceModel {
+    Eigen::Vector3d predict_W(const ResidualFeatures&) const noexcept override { return {0.0, 0.0, 2.0}; }
+  };
+  Controller c(paperVehicle(), p, std::make_shared<ConstantUp>());
+  // A predicted 2 N of upward residual force is taken off the thrust command.
+  EXPECT_NEAR(c.update(hoverInput(2.0)).thrust_des_N, paperVehicle().params().mass_kg * kGravity - 2.0, 1e-9);
+}
+
+TEST(ControllerParams, ValidationNamesTheField) {
+  ControllerParams p;
+  p.filter_cutoff_hz = 150.0;  // above Nyquist at 200 Hz
+  p.k_p_per_s2.y() = -1.0;
+  const auto errors = p.validate();
+  ASSERT_EQ(errors.size(), 2u);
+  EXPECT_EQ(errors[0].field, "k_p_per_s2.y");
+  EXPECT_EQ(errors[1].field, "filter_cutoff_hz");
+  EXPECT_THROW(Controller(paperVehicle(), p), geaware::model::InvalidParameters);
+  AccelerationCompensation a{};
+  EXPECT_TRUE(parse("indi", a));
+  EXPECT_EQ(a, AccelerationCompensation::kIndi);
+  EXPECT_FALSE(parse("pid", a));
+  TorqueCompensation t{};
+  EXPECT_TRUE(parse("model_indi", t));
+  EXPECT_EQ(t, TorqueCompensation::kModelIndi);
+}
+
+}  // namespace

@@ -1,0 +1,4 @@
+// Wall probe: must not compile when linked only against geaware_control.
+#include <geaware/control/controller.hpp>
+#include <geaware/io/vehicle_file.hpp>
+int wallProbe() { return 0; }
