@@ -1,0 +1,90 @@
+#pragma once
+// The four motors, their ESCs and the battery (SPEC.md §5 "Motors"). Rotor speed follows a
+// first-order lag toward the ESC's steady speed for the throttle,
+//   ṅ = (n_ss − n)/τ,   n_ss = √(c2·t² + c1·t + c0)·V/V_nom  clamped to the speed limits,
+// discretised exactly over a step with the target held: n(s) = n_ss + (n0 − n_ss)·e^(−s/τ).
+// The plant evaluates n(s) and ṅ(s) at the RK4 stage times, so the rigid body sees the same
+// exact speed trajectory as the motor state.
+//
+// Torques on the body from the motors (the aerodynamic k_I·n² torque is the aerodynamics'):
+//   reaction of the rotor's angular acceleration   τ = Σ yaw_i·J_R·ṅ_i·z_B   (FACTS: M_i = k_I·n² +
+//   J_R·ṅ) gyroscopic torque of the spinning rotors        τ = −ω × Σ J_R·Ω_i·d_i·z_B
+// with Ω_i the speed in rad/s and d_i = −yaw_i the spin direction (a rotor spinning about +z
+// pushes the body about −z). ṅ in rpm/s is converted to rad/s² (model::kRpmToRadPerSec).
+
+#include <array>
+
+#include <Eigen/Core>
+
+#include "geaware/sim/truth_params.hpp"
+#include "geaware/sim/wrench.hpp"
+
+namespace geaware::sim {
+
+/// Motor torques on the body, body frame [N·m] (force zero): the reaction to the rotors'
+/// angular acceleration and the gyroscopic torque of their spin, each switchable.
+[[nodiscard]] Wrench motorTorques(double J_R_kgm2, const std::array<double, 4>& yaw_sign,
+                                  const std::array<double, 4>& n_rpm,
+                                  const std::array<double, 4>& n_dot_rpm_per_s,
+                                  const Eigen::Vector3d& w_B, bool reaction,
+                                  bool gyroscopic) noexcept;
+
+class Motors {
+ public:
+  /// Requires validated parameters. Rotors start at `initial_rpm` (clamped to the limits).
+  explicit Motors(const TruthParams& params, const std::array<double, 4>& initial_rpm = {});
+
+  /// Fix the ESC targets for the next step of length dt from the throttles (each clamped to
+  /// [0, 1]; non-finite throttles must be rejected by the caller). Updates the battery's
+  /// terminal voltage from the current drawn at the start of the step. No allocation.
+  void beginStep(const std::array<double, 4>& throttle, double dt_s) noexcept;
+
+  /// Rotor speeds and their rates at time s ∈ [0, dt] into the step begun last [rpm, rpm/s].
+  void speedsAt(double s, std::array<double, 4>& n_rpm,
+                std::array<double, 4>& n_dot_rpm_per_s) const noexcept;
+
+  /// Finish the step begun last: speeds become n(dt), the battery discharges. No allocation.
+  void endStep() noexcept;
+
+  /// motorTorques() with this motor set's J_R and spin signs.
+  [[nodiscard]] Wrench reactionWrench(const std::array<double, 4>& n_rpm,
+                                      const std::array<double, 4>& n_dot_rpm_per_s,
+                                      const Eigen::Vector3d& w_B, bool reaction,
+                                      bool gyroscopic) const noexcept {
+    return motorTorques(motor_.J_R_kgm2, yaw_sign_, n_rpm, n_dot_rpm_per_s, w_B, reaction,
+                        gyroscopic);
+  }
+
+  /// ESC steady speed for a throttle at a given battery terminal voltage [rpm].
+  [[nodiscard]] double steadySpeedRpm(double throttle, double voltage_V) const noexcept;
+
+  /// The throttle that holds rotor speed n in steady state, with the battery at its present
+  /// charge and the sag the four rotors at that speed would cause [-] (clamped to [0, 1]).
+  [[nodiscard]] double throttleForSteadySpeed(double n_rpm) const noexcept;
+
+  [[nodiscard]] const std::array<double, 4>& speedsRpm() const noexcept { return n_rpm_; }
+  [[nodiscard]] double voltageV() const noexcept { return voltage_V_; }  ///< terminal voltage
+  [[nodiscard]] double currentA() const noexcept { return current_A_; }  ///< current drawn
+  [[nodiscard]] double chargeUsedAh() const noexcept { return charge_used_Ah_; }
+
+ private:
+  [[nodiscard]] double openCircuitVoltage() const noexcept;
+  [[nodiscard]] double currentAt(const std::array<double, 4>& n_rpm,
+                                 double voltage_V) const noexcept;
+
+  MotorParams motor_;
+  BatteryParams battery_;
+  std::array<double, 4> k_I_{};  // per-rotor aerodynamic torque coefficient (power draw)
+  std::array<double, 4> yaw_sign_{};
+  std::array<double, 4> n_rpm_{};     // speeds at the start of the step
+  std::array<double, 4> n_ss_rpm_{};  // targets of the current step
+  double dt_s_ = 0.0;
+  double decay_half_ =
+      1.0;  // e^(−dt/2τ) and e^(−dt/τ) for the step length dt_s_ (RK4's stage times)
+  double decay_full_ = 1.0;
+  double voltage_V_;
+  double current_A_ = 0.0;
+  double charge_used_Ah_;
+};
+
+}  // namespace geaware::sim

@@ -1,0 +1,194 @@
+#pragma once
+// The truth plant (SPEC.md §5): rigid body + motors/ESC/battery + per-rotor aerodynamics over a
+// terrain, advanced at a fixed step by RK4, with ground-strike detection. The forces and torques
+// are a sum of independent contributions behind one small interface (STYLE.md point 7):
+// gravity, rotor aerodynamics, motor reaction/gyroscopic torques, and any disturbance added
+// later (turbulence, wind gusts) through addContribution().
+//
+// Centre of gravity: PlantState reports the GEOMETRIC centre (rotor-plane centre, body origin);
+// the plant integrates the centre of mass, which sits at cog_offset_B from it, because Newton's
+// law is simple there (m·a_CoM = f, torques about the CoM), and converts after every step:
+//   p_geo = p_CoM − R·c,   v_geo = v_CoM − R·(ω × c),   a_geo = a_CoM − R·(ω̇ × c + ω × (ω × c)).
+// The CoM state is the one carried from step to step, so no round-off accumulates in the
+// conversion. Rotor positions handed to the aerodynamics are relative to the CoM; a CoG offset
+// therefore gives the thrust a lever arm and tilts the vehicle, as it does on a real one.
+//
+// Terrain under the rotors: sampled once per step (height and normal under each rotor at the
+// start of the step); at each RK4 stage the surface is continued from that sample along its
+// tangent plane, so the vertical distance is exact for planes and first-order for curved
+// terrain over the few millimetres a rotor moves in one step. A step edge is thus seen at the
+// start of the step that crosses it. FlatGround is recognised and needs no terrain calls.
+//
+// Determinism: no randomness here; the same inputs give bit-identical states (contributions
+// that draw noise must be seeded). No allocation in step().
+
+#include <array>
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "geaware/sim/motors.hpp"
+#include "geaware/sim/plant_state.hpp"
+#include "geaware/sim/rigid_body.hpp"
+#include "geaware/sim/rotor_aerodynamics.hpp"
+#include "geaware/sim/terrain.hpp"
+#include "geaware/sim/truth_params.hpp"
+#include "geaware/sim/wrench.hpp"
+
+namespace geaware::sim {
+
+/// What every contribution sees at one evaluation of the dynamics (an RK4 stage).
+struct ContributionContext {
+  double t_s = 0.0;                                    ///< time of this evaluation [s]
+  RigidBodyState body;                                 ///< CoM state at this evaluation
+  Eigen::Matrix3d R_WB = Eigen::Matrix3d::Identity();  ///< attitude as a rotation matrix
+  std::array<double, 4> n_rpm{};                       ///< rotor speeds [rpm]
+  std::array<double, 4> n_dot_rpm_per_s{};             ///< rotor accelerations [rpm/s]
+  RotorSurroundings surroundings;                      ///< each rotor's distance to the terrain
+  Eigen::Vector3d wind_W = Eigen::Vector3d::Zero();    ///< air velocity at the vehicle [m/s]
+};
+
+/// One independent physical contribution to the wrench on the vehicle.
+class Contribution {
+ public:
+  virtual ~Contribution() = default;
+  [[nodiscard]] virtual const char* name() const noexcept = 0;
+  /// Called once at the start of every step, before the stage evaluations: a stochastic
+  /// disturbance draws its (seeded) noise here and holds it over the step. Default: nothing.
+  virtual void beginStep(double /*t_s*/, double /*dt_s*/, const PlantState& /*state*/) noexcept {}
+  /// Body-frame force and torque about the CoM. Called four times per step; no allocation.
+  [[nodiscard]] virtual Wrench wrench(const ContributionContext& ctx) noexcept = 0;
+};
+
+namespace detail {
+class GravityContribution;
+class RotorAeroContribution;
+class MotorTorqueContribution;
+}  // namespace detail
+
+/// Which built-in contributions are on, and the step.
+struct PlantConfig {
+  double step_s = 1e-3;  ///< default fixed step (1 kHz) [s]
+  bool gravity = true;   ///< m·g along −z_W
+  bool rotor_aerodynamics =
+      true;                    ///< per-rotor thrust with ground effect, k_I·n² torque, rotor drag
+  bool motor_reaction = true;  ///< J_R·ṅ reaction torque
+  bool gyroscopic = true;      ///< −ω × Σ J_R·Ω_i·d_i·z_B
+  bool ground_strikes = true;  ///< end the run when a rotor rim or foot goes under the surface
+  int rim_samples = 8;         ///< points sampled on each rotor-disc rim for strikes [-]
+};
+
+enum class StrikePart { kRotorDisc, kLandingFoot };
+
+/// The end of a flight: something went under the terrain surface.
+struct Crash {
+  double t_s = 0.0;                                   ///< time of the step that found it [s]
+  Eigen::Vector3d point_W = Eigen::Vector3d::Zero();  ///< the deepest point under the surface [m]
+  StrikePart part = StrikePart::kRotorDisc;           ///< what struck
+  int index = 0;         ///< rotor (mixer order) or foot index, 0-based
+  double depth_m = 0.0;  ///< how far under the surface [m]
+};
+
+/// One line for logs and the CLI, e.g. "t = 0.4350 s: landing foot 1 struck the ground at
+/// (0.562, 0.562, -0.003) m, 3.1 mm deep" (rotors and feet numbered from 1 there).
+[[nodiscard]] std::string describe(const Crash& crash);
+
+/// Outcome of one step.
+struct StepResult {
+  bool throttle_fault = false;  ///< a non-finite throttle was replaced (NaN → 0, ±∞ → 1/0)
+  std::optional<Crash> crash;   ///< set once the vehicle has struck the terrain
+};
+
+/// Each rotor's vertical distance to the terrain under it and the surface normal there, from
+/// the CoM position and the rotor positions relative to the CoM. A null terrain gives ∞ and z_W.
+[[nodiscard]] RotorSurroundings rotorSurroundings(
+    const Terrain* terrain, const Eigen::Vector3d& p_com_W, const Eigen::Matrix3d& R_WB,
+    const std::array<Eigen::Vector3d, 4>& rotor_from_com_B) noexcept;
+
+class Plant {
+ public:
+  /// Throws std::invalid_argument listing every invalid field of `params` or `config`, or a
+  /// non-finite initial state. The rotors start at `initial.n_rpm`. A null terrain means no
+  /// ground (no ground effect, no strikes).
+  Plant(const TruthParams& params, std::shared_ptr<const Terrain> terrain,
+        const PlantConfig& config = {}, const PlantState& initial = {});
+
+  /// Advance by the configured step / by dt (> 0 and finite, else nothing happens and the
+  /// result carries throttle_fault). Throttles are clamped to [0, 1]; a non-finite one is a
+  /// fault: NaN becomes 0, ±∞ is clamped, the step proceeds and the fault is counted. After a
+  /// crash the state is frozen and every step returns the crash. No allocation.
+  [[nodiscard]] StepResult step(const std::array<double, 4>& throttle);
+  [[nodiscard]] StepResult step(const std::array<double, 4>& throttle, double dt_s);
+
+  /// Add a disturbance (or any other contribution); it is summed from the next step on.
+  void addContribution(std::unique_ptr<Contribution> contribution);
+
+  /// Air velocity at the vehicle from now on (the aerodynamics see v_CoM − wind) [m/s].
+  void setWind_W(const Eigen::Vector3d& wind_W) noexcept { wind_W_ = wind_W; }
+
+  [[nodiscard]] const PlantState& state() const noexcept { return state_; }
+  [[nodiscard]] const RigidBodyState& centreOfMassState() const noexcept { return body_; }
+  [[nodiscard]] const std::optional<Crash>& crash() const noexcept { return crash_; }
+  [[nodiscard]] long throttleFaults() const noexcept { return throttle_faults_; }
+  [[nodiscard]] const TruthParams& params() const noexcept { return params_; }
+  [[nodiscard]] const PlantConfig& config() const noexcept { return config_; }
+  [[nodiscard]] const Motors& motors() const noexcept { return motors_; }
+  [[nodiscard]] const Terrain* terrain() const noexcept { return terrain_.get(); }
+  /// Aerodynamic outputs (per-rotor thrust and gain) at the end of the last step, from RK4's
+  /// last stage like PlantState::a_W (all zero when the rotor aerodynamics are off).
+  [[nodiscard]] const RotorAeroOutput& lastAero() const noexcept;
+  /// The contributions, in summation order (built-ins first).
+  [[nodiscard]] const std::vector<std::unique_ptr<Contribution>>& contributions() const noexcept {
+    return contributions_;
+  }
+
+  /// The throttle that holds rotor speed n in steady state at the battery's present state [-].
+  [[nodiscard]] double throttleForSteadySpeed(double n_rpm) const noexcept {
+    return motors_.throttleForSteadySpeed(n_rpm);
+  }
+
+ private:
+  /// Sum of the contributions and the rigid-body derivative at time t0 + s, CoM state x.
+  [[nodiscard]] RigidBodyDerivative evaluate(double s, const RigidBodyState& x);
+  /// Convert the CoM state (and its derivative at the end of the step) to PlantState:
+  /// a_W and w_dot_B come from RK4's last stage, within O(dt²) of the final state's.
+  void publish(const RigidBodyDerivative& end_derivative);
+  [[nodiscard]] std::optional<Crash> detectStrike() const noexcept;
+  /// Sample the terrain under each rotor at the start of a step.
+  void sampleTerrain() noexcept;
+
+  TruthParams params_;
+  std::shared_ptr<const Terrain> terrain_;
+  PlantConfig config_;
+  MassProperties mass_;
+  std::array<Eigen::Vector3d, 4> rotor_from_com_B_{};
+  std::vector<Eigen::Vector2d> rim_unit_;  // (cos θ_k, sin θ_k) around each rotor disc
+  Motors motors_;
+  std::vector<std::unique_ptr<Contribution>> contributions_;
+  // The built-ins among contributions_ (null when switched off), called through their final
+  // types so that the compiler can inline them; added contributions follow them, virtually.
+  detail::GravityContribution* gravity_ = nullptr;
+  detail::RotorAeroContribution* aero_ = nullptr;
+  detail::MotorTorqueContribution* motor_torques_ = nullptr;
+  std::size_t builtin_count_ = 0;
+  const RotorAeroOutput* last_aero_ =
+      nullptr;  // inside the aerodynamics contribution (heap: survives moves)
+  ContributionContext ctx_;
+  double t0_s_ = 0.0;                    // start time of the step in progress
+  std::optional<double> flat_z_m_;       // the terrain is FlatGround at this level
+  std::optional<double> terrain_top_m_;  // known highest point of the terrain (strike pre-check)
+  std::array<Eigen::Vector3d, 4>
+      ground_sample_W_{};  // (x, y, H) under each rotor at the step start
+  std::array<Eigen::Vector3d, 4> ground_normal_W_{};  // the surface normal there
+  RigidBodyState body_;
+  PlantState state_;
+  Eigen::Vector3d wind_W_ = Eigen::Vector3d::Zero();
+  std::optional<Crash> crash_;
+  long throttle_faults_ = 0;
+};
+
+}  // namespace geaware::sim

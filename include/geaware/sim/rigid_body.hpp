@@ -1,0 +1,94 @@
+#pragma once
+// 6-DoF rigid-body dynamics of the centre of mass (SPEC.md §1 and §5) and a classic RK4
+// integrator that takes the dynamics as a callable (STYLE.md point 7):
+//   ṗ = v,   v̇ = R·f_B/m,   q̇ = ½·q ⊗ (0, ω),   ω̇ = J⁻¹·(τ_B − ω × J·ω),
+// with f_B the total body-frame force (gravity included, as a contribution) and τ_B the total
+// torque about the CoM. The state here is the CoM's; the plant converts to and from the
+// geometric centre that PlantState reports.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "geaware/sim/wrench.hpp"
+
+namespace geaware::sim {
+
+/// State of the centre of mass.
+struct RigidBodyState {
+  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();             ///< CoM position [m]
+  Eigen::Vector3d v_W = Eigen::Vector3d::Zero();             ///< CoM velocity [m/s]
+  Eigen::Quaterniond q_WB = Eigen::Quaterniond::Identity();  ///< attitude, body → world
+  Eigen::Vector3d w_B = Eigen::Vector3d::Zero();             ///< body rates [rad/s]
+};
+
+/// Time derivative of RigidBodyState (the quaternion's as four raw coefficients w, x, y, z).
+struct RigidBodyDerivative {
+  Eigen::Vector3d p_dot = Eigen::Vector3d::Zero();  ///< [m/s]
+  Eigen::Vector3d v_dot = Eigen::Vector3d::Zero();  ///< [m/s²]
+  Eigen::Vector4d q_dot = Eigen::Vector4d::Zero();  ///< (ẇ, ẋ, ẏ, ż) [1/s]
+  Eigen::Vector3d w_dot = Eigen::Vector3d::Zero();  ///< [rad/s²]
+};
+
+/// Mass properties about the CoM, with the inverse inertia precomputed.
+class MassProperties {
+ public:
+  /// Requires mass > 0 and a symmetric positive-definite inertia.
+  MassProperties(double mass_kg, const Eigen::Matrix3d& inertia_kgm2);
+  [[nodiscard]] double mass() const noexcept { return mass_kg_; }
+  [[nodiscard]] double massInverse() const noexcept { return inv_mass_; }
+  [[nodiscard]] const Eigen::Matrix3d& inertia() const noexcept { return J_; }
+  [[nodiscard]] const Eigen::Matrix3d& inertiaInverse() const noexcept { return J_inv_; }
+
+ private:
+  double mass_kg_;
+  double inv_mass_;
+  Eigen::Matrix3d J_;
+  Eigen::Matrix3d J_inv_;
+};
+
+/// Newton–Euler derivative of the state under a body-frame wrench (about the CoM). The
+/// quaternion is normalised before use so that the stage states of RK4 (slightly off the unit
+/// sphere) still give a rotation.
+[[nodiscard]] RigidBodyDerivative rigidBodyDerivative(const RigidBodyState& x, const Wrench& wrench,
+                                                      const MassProperties& mass) noexcept;
+
+/// The same with the rotation matrix of x's normalised quaternion already at hand.
+[[nodiscard]] RigidBodyDerivative rigidBodyDerivative(const RigidBodyState& x,
+                                                      const Eigen::Matrix3d& R_WB,
+                                                      const Wrench& wrench,
+                                                      const MassProperties& mass) noexcept;
+
+/// The rotation matrix of q/|q| for any non-zero q = (w, v), without normalising q first (one
+/// division, no square root): R = I + s·(w·[v]× + [v]×²) with s = 2/|q|².
+[[nodiscard]] Eigen::Matrix3d rotationOf(const Eigen::Quaterniond& q) noexcept;
+
+/// x + h·dx (the quaternion advanced in its coefficients, not renormalised: RK4's stages).
+[[nodiscard]] RigidBodyState advance(const RigidBodyState& x, const RigidBodyDerivative& dx,
+                                     double h) noexcept;
+
+/// One classic RK4 step of length dt from time t. `f(t, x) → RigidBodyDerivative` is called at
+/// t, t + dt/2 (twice) and t + dt. The quaternion is renormalised at the end. RK4 is exact for
+/// dynamics whose solution is a polynomial of degree ≤ 4 in time (e.g. constant acceleration).
+template <typename Dynamics>
+[[nodiscard]] RigidBodyState rk4Step(const RigidBodyState& x, double t, double dt, Dynamics&& f) {
+  const RigidBodyDerivative k1 = f(t, x);
+  const RigidBodyDerivative k2 = f(t + 0.5 * dt, advance(x, k1, 0.5 * dt));
+  const RigidBodyDerivative k3 = f(t + 0.5 * dt, advance(x, k2, 0.5 * dt));
+  const RigidBodyDerivative k4 = f(t + dt, advance(x, k3, dt));
+  RigidBodyDerivative sum;
+  sum.p_dot = k1.p_dot + 2.0 * k2.p_dot + 2.0 * k3.p_dot + k4.p_dot;
+  sum.v_dot = k1.v_dot + 2.0 * k2.v_dot + 2.0 * k3.v_dot + k4.v_dot;
+  sum.q_dot = k1.q_dot + 2.0 * k2.q_dot + 2.0 * k3.q_dot + k4.q_dot;
+  sum.w_dot = k1.w_dot + 2.0 * k2.w_dot + 2.0 * k3.w_dot + k4.w_dot;
+  RigidBodyState out = advance(x, sum, dt / 6.0);
+  out.q_WB.normalize();
+  return out;
+}
+
+/// Kinetic energy ½m·v² + ½ωᵀJω [J] and angular momentum in the world frame R·J·ω [N·m·s]
+/// (invariants for the tests).
+[[nodiscard]] double kineticEnergy(const RigidBodyState& x, const MassProperties& mass) noexcept;
+[[nodiscard]] Eigen::Vector3d angularMomentum_W(const RigidBodyState& x,
+                                                const MassProperties& mass) noexcept;
+
+}  // namespace geaware::sim

@@ -1,0 +1,166 @@
+#pragma once
+// Truth-side per-rotor aerodynamics: thrust, reaction torque and rotor drag of each rotor with
+// ground effect from that rotor's own distance to the surface below it. This is NOT the
+// controller's model (model/ground_effect.hpp): the leveling torque here emerges from per-rotor
+// thrust differences. Design, sources and calibration: docs/sim-aerodynamics.md.
+//
+// Per rotor i, at distance z_i to the surface below it (vertical, as the caller measures it):
+//   φ_i   = max(0, C(z̄) + l̄ + sat_M((1 + μ)·(l_i − l̄)))  additional-thrust fraction
+//   T_i   = k_T,i·n_i² + fade_i·φ_i·[β·k_T,i·n_i² + (1 − β)·mean_j k_T,j·n_j²]
+//   Q_i   = spin_i·k_I,i·n_i²·(1 − κ_Q·fade_i·φ_i)
+//   f_D,i = −diag(c_x·q_x(z_i), c_y·q_y(z_i))·n_i·v_inplane,i
+// with C the collective (vehicle-scale) cushion of Sanchez-Cuevas et al. 2017 at the mean rotor
+// distance z̄, l the rotor-resolved impingement law (Cheeseman–Bennett image + slipstream
+// impingement below the wake-merge height, times a recirculation factor, held at its peak
+// below z* ≈ 0.083 m so that the lower rotor's gain saturates),
+// sat_M a bounded redistribution with M = m·z̄, fade_i = v_i²/(v_i² + |v_inplane,i|²)
+// (Cheeseman–Bennett's forward-flight correction). Every symbol is a field below.
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+#include "geaware/model/vehicle_params.hpp"
+#include "geaware/sim/wrench.hpp"
+
+namespace geaware::sim {
+
+/// Parameters of the truth aerodynamics (defaults: calibrated to the paper's measurements for
+/// its quadrotor; `geaware rig calibrate` checks them, docs/sim-aerodynamics.md explains them).
+struct RotorAeroParams {
+  // --- Collective cushion (vehicle scale, no torque), Sanchez-Cuevas et al. 2017 -------------
+  /// Body coefficient K_b of the Sanchez-Cuevas multirotor law (their fuselage term) [-].
+  double body_coefficient = 2.177;
+
+  // --- Rotor-resolved impingement (per rotor, makes the leveling torque) ----------------------
+  /// Core radius of the regularised Cheeseman–Bennett image term (R/4)²/(z² + (c·R)²), as a
+  /// fraction c of the propeller radius; keeps the law finite at z → 0 [-].
+  double image_core_fraction = 0.25;
+  /// Slope of the slipstream-impingement term below the wake-merge height [1/m].
+  double impingement_slope_per_m = 0.2449;
+  /// Height below which a rotor's own slipstream still reaches the surface as a separate jet
+  /// (above it the four slipstreams have merged) [m].
+  double wake_merge_height_m = 0.3053;
+  /// Rounding of the impingement ramp at the merge height [m].
+  double wake_merge_softness_m = 0.003;
+  /// Recirculation height z_r: the rotor-resolved term carries the factor 1/(1 + (z_r/z)⁴) and
+  /// is held at its maximum below the height z* where it peaks (the lower rotor's gain
+  /// saturates instead of growing; z* ≈ 0.083 m with the defaults) [m].
+  double recirculation_height_m = 0.06741;
+  /// Suck-down amplification μ of the rotor-resolved differences (zero-sum over the rotors) [-].
+  double suckdown_gain = 2.994;
+  /// Bound on each rotor's redistributed share, M = m·z̄ (z̄ the mean rotor distance) [1/m].
+  double redistribution_cap_per_m = 0.3432;
+
+  // --- How the increment is applied ------------------------------------------------------------
+  /// Fraction β of a rotor's ground-effect increment that scales with its own n²; the rest
+  /// scales with the mean rotor thrust (the cushion is fed by all wakes) [-].
+  double own_thrust_fraction = 0.2;
+  /// Relative reduction κ_Q of the reaction torque per unit additional-thrust fraction [-].
+  double reaction_torque_reduction = 0.1;
+  /// Beyond this distance (and for non-finite distances) a rotor sees no surface; the thrust
+  /// laws are tapered by 1 − (z/range)⁴ to reach zero there smoothly [m].
+  double ground_effect_range_m = 3.0;
+  /// Distances below this are clamped to it (a rotor touching the surface) [m].
+  double min_ground_distance_m = 0.01;
+
+  // --- Forward-flight fade -----------------------------------------------------------------------
+  /// Induced velocity v_i at the reference rotor speed (FACTS.md: about 4 m/s at hover) [m/s].
+  double induced_velocity_mps = 4.0;
+  /// Rotor speed at which `induced_velocity_mps` holds; v_i scales with n (momentum theory) [rpm].
+  double induced_velocity_ref_rpm = 10179.0;
+
+  // --- Rotor drag --------------------------------------------------------------------------------
+  /// Per-rotor drag along body x per rpm, out of ground effect [N/(m/s)/rpm].
+  double drag_x_N_per_mps_per_rpm = 9.8078e-6;
+  /// Per-rotor drag along body y per rpm, out of ground effect [N/(m/s)/rpm].
+  double drag_y_N_per_mps_per_rpm = 8.1490e-6;
+  /// Near-ground drag reduction a_x in q_x(z) = 1 − a_x/(1 + (z/z_q)²) [-].
+  double drag_ground_reduction_x = 0.37798;
+  /// Near-ground drag reduction a_y in q_y(z) = 1 − a_y/(1 + (z/z_q)²) [-].
+  double drag_ground_reduction_y = 0.34928;
+  /// Range z_q of the near-ground drag reduction [m].
+  double drag_ground_height_m = 0.25;
+
+  /// Every field that is not finite or out of its physical range (key paths "aero.<field>").
+  [[nodiscard]] std::vector<model::FieldError> validate() const;
+};
+
+/// What each rotor sees of the surface below it, computed by the caller from the terrain.
+struct RotorSurroundings {
+  /// Rotor-disc centre to the surface below, along −z_W [m]; ∞ (or NaN): no surface.
+  std::array<double, 4> ground_distance_m{};
+  /// Unit upward normal of that surface (not used: the truth is calibrated on vertical
+  /// distances, see docs/sim-aerodynamics.md).
+  std::array<Eigen::Vector3d, 4> ground_normal_W{};
+};
+
+/// The rotors as built (truth side: may differ from the controller's nominal vehicle).
+struct RotorGeometry {
+  /// Rotor-disc centres relative to the CoM, body frame [m].
+  std::array<Eigen::Vector3d, 4> position_B{};
+  /// Reaction-torque sign about z_B (the mixer's yaw row).
+  std::array<double, 4> spin{};
+  /// Per-rotor thrust coefficient, out of ground effect [N/rpm²].
+  std::array<double, 4> k_T_N_per_rpm2{};
+  /// Per-rotor aerodynamic torque coefficient [N·m/rpm²].
+  std::array<double, 4> k_I_Nm_per_rpm2{};
+  /// Propeller radius [m].
+  double radius_m = 0.0;
+};
+
+/// Per-rotor outputs, for logging and the rigs.
+struct RotorAeroOutput {
+  Wrench wrench;                     ///< sum over rotors, body frame, about the CoM
+  std::array<double, 4> thrust_N{};  ///< each rotor's thrust including ground effect [N]
+  std::array<double, 4> gain{};      ///< each rotor's thrust ratio T/T_free [-]
+};
+
+class RotorAerodynamics {
+ public:
+  /// Throws std::invalid_argument listing the offending fields when `params` fail validate()
+  /// or the geometry is not usable (non-finite, radius ≤ 0, rotors on top of each other).
+  RotorAerodynamics(const RotorGeometry& geometry, const RotorAeroParams& params);
+
+  /// Aerodynamic wrench of the four rotors: thrust with per-rotor ground effect (faded by
+  /// forward speed), aerodynamic reaction torque, rotor drag. `v_air_W` is the velocity of the
+  /// CoM relative to the air (wind subtracted), `w_B` the body rates. No allocation.
+  [[nodiscard]] RotorAeroOutput compute(const std::array<double, 4>& n_rpm,
+                                        const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& v_air_W,
+                                        const Eigen::Vector3d& w_B,
+                                        const RotorSurroundings& surroundings) const noexcept;
+
+  /// Static additional-thrust fraction φ_i of each rotor (no forward-speed fade) for the given
+  /// distances [-]: the rigs and the calibration read it; compute() uses the same function.
+  [[nodiscard]] std::array<double, 4> additionalThrustFraction(
+      const std::array<double, 4>& ground_distance_m) const noexcept;
+
+  [[nodiscard]] const RotorGeometry& geometry() const noexcept { return geometry_; }
+  /// Height below which each rotor's rotor-resolved gain is held at its maximum [m].
+  [[nodiscard]] double saturationHeight() const noexcept { return z_star_; }
+  [[nodiscard]] const RotorAeroParams& params() const noexcept { return params_; }
+
+ private:
+  [[nodiscard]] double collective(double z_mean) const noexcept;
+  [[nodiscard]] double rotorResolvedRaw(double z) const noexcept;
+  [[nodiscard]] double rotorResolved(double z) const noexcept {
+    return rotorResolvedRaw(z < z_star_ ? z_star_ : z);
+  }
+
+  RotorGeometry geometry_;
+  RotorAeroParams params_;
+  // Precomputed from the geometry and the parameters.
+  double image_num_ = 0.0;      // (R/4)²
+  double image_core_sq_ = 0.0;  // (c·R)²
+  double adjacent_sq_ = 0.0;    // d², adjacent rotor spacing squared
+  double diagonal_sq_ = 0.0;    // 2·d²
+  double arm_sq_ = 0.0;         // rotor-to-centre distance squared
+  double radius_sq_ = 0.0;      // R²
+  double merge_soft_sq_ = 0.0;
+  double recirc_sq_ = 0.0;  // z_r²
+  double inv_drag_height_sq_ = 0.0;
+  double vi_per_rpm_ = 0.0;  // induced velocity per rpm [m/s/rpm]
+  double z_star_ = 0.0;      // height below which the rotor-resolved term is held [m]
+};
+
+}  // namespace geaware::sim

@@ -1,0 +1,157 @@
+#pragma once
+// The concrete terrains of SPEC.md §5: flat ground, a tilted plane, a step or table edge, and a
+// height map loaded from a file. Each overrides rayCast: a closed form for the planes and the
+// step; for the height map, steps bounded by its steepest slope ("sphere tracing" for height
+// fields), which never jump over the surface, then bisection.
+
+#include <algorithm>
+#include <cstddef>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "geaware/sim/terrain.hpp"
+
+namespace geaware::sim {
+
+/// Horizontal ground z = z0.
+class FlatGround final : public Terrain {
+ public:
+  explicit FlatGround(double z0_m = 0.0) noexcept : z0_m_(z0_m) {}
+  [[nodiscard]] double heightAt(double, double) const noexcept override { return z0_m_; }
+  [[nodiscard]] Eigen::Vector3d normalAt(double, double) const noexcept override {
+    return Eigen::Vector3d::UnitZ();
+  }
+  [[nodiscard]] std::optional<double> rayCast(const Eigen::Vector3d& origin_W,
+                                              const Eigen::Vector3d& dir_W,
+                                              double max_range_m) const noexcept override;
+  [[nodiscard]] double level() const noexcept { return z0_m_; }  ///< z0 [m]
+
+ private:
+  double z0_m_;
+};
+
+/// The plane through `point_W` with upward unit normal `normal_W` (n_z > 0 required: a height
+/// field cannot hold a vertical or overhanging plane).
+class TiltedPlane final : public Terrain {
+ public:
+  /// Throws std::invalid_argument for a non-finite point or a normal with n_z ≤ 0.05 (> 87°).
+  TiltedPlane(const Eigen::Vector3d& point_W, const Eigen::Vector3d& normal_W);
+
+  /// The horizontal plane through `point_W` rotated by `roll_rad` about x_W, then `pitch_rad`
+  /// about y_W: n = R_y(pitch)·R_x(roll)·z_W. A positive pitch lowers the +x side (the board of
+  /// the paper's platform tilted about the vehicle's y axis).
+  [[nodiscard]] static TiltedPlane fromTilt(const Eigen::Vector3d& point_W, double roll_rad,
+                                            double pitch_rad);
+
+  [[nodiscard]] double heightAt(double x_m, double y_m) const noexcept override;
+  [[nodiscard]] Eigen::Vector3d normalAt(double, double) const noexcept override { return n_W_; }
+  [[nodiscard]] std::optional<double> rayCast(const Eigen::Vector3d& origin_W,
+                                              const Eigen::Vector3d& dir_W,
+                                              double max_range_m) const noexcept override;
+
+ private:
+  Eigen::Vector3d p_W_;
+  Eigen::Vector3d n_W_;
+};
+
+/// A step or table edge: two horizontal levels split by a straight line in the xy-plane.
+/// Points with (xy − edge_point)·towards_high ≥ 0 are at z_high, the rest at z_low. The vertical
+/// face is part of the surface for ray casts; its normal is not defined by a height field, so
+/// normalAt() returns z_W everywhere (each side is horizontal).
+class StepTerrain final : public Terrain {
+ public:
+  /// Throws std::invalid_argument for non-finite values or a zero `towards_high`.
+  StepTerrain(const Eigen::Vector2d& edge_point_W, const Eigen::Vector2d& towards_high,
+              double z_low_m, double z_high_m);
+
+  [[nodiscard]] double heightAt(double x_m, double y_m) const noexcept override;
+  [[nodiscard]] Eigen::Vector3d normalAt(double, double) const noexcept override {
+    return Eigen::Vector3d::UnitZ();
+  }
+  [[nodiscard]] std::optional<double> rayCast(const Eigen::Vector3d& origin_W,
+                                              const Eigen::Vector3d& dir_W,
+                                              double max_range_m) const noexcept override;
+
+  /// Signed horizontal distance of (x, y) from the edge, positive on the high side [m].
+  [[nodiscard]] double signedDistance(double x_m, double y_m) const noexcept;
+  [[nodiscard]] double maxHeight() const noexcept {
+    return std::max(z_low_m_, z_high_m_);
+  }  ///< [m]
+
+ private:
+  Eigen::Vector2d edge_point_W_;
+  Eigen::Vector2d u_;  // unit, towards the high side
+  double z_low_m_;
+  double z_high_m_;
+};
+
+/// A problem in a height-map file; what() reads "FILE:LINE[:COLUMN]: message".
+class TerrainFileError : public std::runtime_error {
+ public:
+  TerrainFileError(std::string file, int line, int column, const std::string& message);
+  [[nodiscard]] const std::string& file() const noexcept { return file_; }
+  [[nodiscard]] int line() const noexcept { return line_; }  ///< 1-based, 0: whole file
+  [[nodiscard]] int column() const noexcept {
+    return column_;
+  }  ///< 1-based CSV field, 0: whole line
+
+ private:
+  std::string file_;
+  int line_;
+  int column_;
+};
+
+/// A regular grid of heights, bilinear between the nodes, held at the border value outside.
+/// Node (i, j) sits at (origin_x + i·cell, origin_y + j·cell); the file stores one CSV row per j
+/// (the first row at origin_y) with one value per i, in metres. File format:
+///
+///     # geaware height map
+///     # origin_x_m: -2.0
+///     # origin_y_m: -2.0
+///     # cell_m: 0.05
+///     0.00, 0.00, 0.01, ...
+///
+/// Header lines start with '#'; a line "# key: value" with one of the three keys sets it, every
+/// key is required once, other '#' lines are comments. Blank lines are skipped.
+class HeightMap final : public Terrain {
+ public:
+  /// `heights[j][i]`; throws std::invalid_argument unless ≥ 2×2, rectangular, all finite, cell > 0.
+  HeightMap(double origin_x_m, double origin_y_m, double cell_m,
+            const std::vector<std::vector<double>>& heights);
+
+  /// Loads the format above; throws TerrainFileError naming the file, line and column.
+  [[nodiscard]] static HeightMap fromFile(const std::string& path);
+
+  [[nodiscard]] double heightAt(double x_m, double y_m) const noexcept override;
+  [[nodiscard]] Eigen::Vector3d normalAt(double x_m, double y_m) const noexcept override;
+  [[nodiscard]] std::optional<double> rayCast(const Eigen::Vector3d& origin_W,
+                                              const Eigen::Vector3d& dir_W,
+                                              double max_range_m) const noexcept override;
+
+  [[nodiscard]] std::size_t columns() const noexcept { return nx_; }  ///< nodes along x
+  [[nodiscard]] std::size_t rows() const noexcept { return ny_; }     ///< nodes along y
+  [[nodiscard]] double cellSize() const noexcept { return cell_m_; }
+  [[nodiscard]] double maxHeight() const noexcept { return max_z_m_; }  ///< highest node [m]
+
+ private:
+  /// Cell index and fractions of (x, y), clamped to the grid.
+  void locate(double x_m, double y_m, std::size_t& i, std::size_t& j, double& fx,
+              double& fy) const noexcept;
+  [[nodiscard]] double node(std::size_t i, std::size_t j) const noexcept { return z_[j * nx_ + i]; }
+
+  double origin_x_m_;
+  double origin_y_m_;
+  double cell_m_;
+  std::size_t nx_ = 0;
+  std::size_t ny_ = 0;
+  std::vector<double> z_;     // row-major, j * nx + i
+  double max_slope_x_ = 0.0;  // max |∂H/∂x| over the map (bilinear: the steepest x edge) [-]
+  double max_slope_y_ = 0.0;  // max |∂H/∂y| [-]
+  double max_z_m_ = 0.0;      // highest node [m]
+};
+
+}  // namespace geaware::sim

@@ -1,0 +1,104 @@
+#pragma once
+// The vehicle as it really is: the simulator's "truth", which may differ from the nominal
+// vehicle the controller believes in (model::VehicleParams). Mass, inertia, centre of gravity,
+// per-motor thrust spread, motors, ESC and battery. Only sim/ reads it.
+//
+// Frames: body frame x forward, y left, z up, origin at the GEOMETRIC centre of the vehicle
+// (the centre of the rotor plane, where model::Mixer puts its rotor positions). The centre of
+// mass sits at `cog_offset_B` from it.
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "geaware/model/vehicle_params.hpp"
+#include "geaware/sim/rotor_aerodynamics.hpp"
+
+namespace geaware::sim {
+
+/// Battery and its influence on the ESC. The ESC curve was identified "after removing the
+/// battery-voltage influence" (FACTS.md, supplementary section 3), i.e. it holds at the nominal
+/// voltage. An ESC drives the motor with a duty cycle; the motor's back-EMF speed is
+/// proportional to the applied voltage, so the steady speed scales with V/V_nom and
+///   n_ss² = (c2·t² + c1·t + c0) · (V/V_nom)².
+/// The battery is a linear open-circuit voltage (V_full at full charge down to V_empty at the
+/// rated capacity) behind an internal resistance:
+///   V = V_oc(Q_used) − R_int·I,   I = I_idle + Σ_i P_mech,i / (η·V),   P_mech,i = k_I·n_i²·Ω_i.
+/// I is evaluated once per step from the speeds at the start of the step (explicit; the
+/// electrical time constants are far below 1 ms).
+struct BatteryParams {
+  bool enabled = true;              ///< false: V ≡ V_nom, the curve holds exactly
+  double full_voltage_V = 16.8;     ///< open-circuit voltage when full (4S LiPo, 4.2 V/cell) [V]
+  double empty_voltage_V = 14.0;    ///< open-circuit voltage at rated capacity (3.5 V/cell) [V]
+  double nominal_voltage_V = 16.0;  ///< voltage at which the ESC curve holds [V]
+  double internal_resistance_ohm = 0.025;  ///< pack + wiring resistance [Ω]
+  double capacity_Ah = 3.0;                ///< rated capacity [A·h]
+  double initial_charge_used_Ah = 0.0;     ///< charge already drawn at t = 0 [A·h]
+  double efficiency = 0.75;     ///< motor + ESC efficiency, mechanical/electrical power [-]
+  double idle_current_A = 0.5;  ///< flight controller, receiver, ranger… [A]
+};
+
+/// Motor/ESC truth. Rotor speed follows a first-order lag toward the ESC's steady speed.
+struct MotorParams {
+  double time_constant_s = 0.03;  ///< first-order speed time constant τ [s] (7-inch, ~30 ms)
+  double min_speed_rpm = 0.0;     ///< hard speed floor (0: motor may stop) [rpm]
+  double max_speed_rpm =
+      21000.0;            ///< hard speed ceiling (above the curve's 19,708 rpm at 16.8 V) [rpm]
+  double J_R_kgm2 = 0.0;  ///< rotor + bell inertia about the spin axis [kg·m²]
+  model::ThrottleCurveParams throttle;  ///< ESC curve n² = c2·t²+c1·t+c0 at nominal voltage [rpm²]
+};
+
+/// How far a perturbed truth vehicle may differ from its nominal one. Every quantity is drawn
+/// uniformly in ±its bound (seeded), independently.
+struct MismatchSpec {
+  double mass_rel = 0.0;           ///< relative mass error bound, e.g. 0.05 = ±5 % [-]
+  double inertia_rel = 0.0;        ///< relative error bound on each principal moment [-]
+  double cog_offset_m = 0.0;       ///< bound on each of the CoG offset's x, y components [m]
+  double cog_offset_z_m = 0.0;     ///< bound on the CoG offset's z component [m]
+  double thrust_spread_rel = 0.0;  ///< bound on each motor's thrust multiplier − 1 [-]
+};
+
+struct TruthParams {
+  double mass_kg = 0.0;  ///< flying mass [kg]
+  Eigen::Matrix3d inertia_kgm2 =
+      Eigen::Matrix3d::Zero();  ///< inertia about the CoM, body axes [kg·m²]
+  Eigen::Vector3d cog_offset_B =
+      Eigen::Vector3d::Zero();  ///< CoM relative to the geometric centre, body [m]
+  std::array<Eigen::Vector3d, 4>
+      rotor_position_B{};  ///< rotor-disc centres rel. geometric centre, body, mixer order [m]
+  std::array<double, 4>
+      yaw_sign{};                   ///< reaction-torque sign about z_B (model::Mixer::yawSigns) [-]
+  double propeller_radius_m = 0.0;  ///< [m]
+  double k_T_N_per_rpm2 = 0.0;      ///< nominal thrust coefficient, out of ground effect [N/rpm²]
+  double k_I_Nm_per_rpm2 = 0.0;     ///< nominal aerodynamic torque coefficient [N·m/rpm²]
+  std::array<double, 4> thrust_multiplier{1.0, 1.0, 1.0,
+                                          1.0};  ///< per-motor k_T (and k_I) spread [-]
+  MotorParams motor;
+  BatteryParams battery;
+  std::vector<Eigen::Vector3d>
+      landing_feet_B;          ///< foot contact points rel. geometric centre, body [m]
+  RotorAeroParams aero;        ///< truth aerodynamics (defaults: calibrated)
+  double gravity_mps2 = 9.81;  ///< [m/s²] (model::kGravity)
+
+  /// The rotor geometry the aerodynamics needs: positions relative to the CoM, per-rotor
+  /// coefficients with the thrust spread applied.
+  [[nodiscard]] RotorGeometry rotorGeometry() const;
+
+  /// Every field that is not finite or not in its physical range, with its value and what was
+  /// expected (key paths as in model::VehicleParams::validate). Empty when usable.
+  [[nodiscard]] std::vector<model::FieldError> validate() const;
+};
+
+/// The truth identical to the nominal vehicle: no CoG offset, no thrust spread, the nominal
+/// curve and coefficients, battery at full charge, four landing feet under the rotor arms at
+/// the vehicle's lowest rotor-plane height. Requires validated nominal parameters.
+[[nodiscard]] TruthParams fromNominal(const model::VehicleParams& nominal);
+
+/// A seeded random variation of `base` within `spec` (mass, inertia, CoG, thrust spread).
+/// The same seed always gives the same vehicle. Inertia stays a valid rigid-body inertia.
+[[nodiscard]] TruthParams perturbed(const TruthParams& base, const MismatchSpec& spec,
+                                    std::uint64_t seed);
+
+}  // namespace geaware::sim

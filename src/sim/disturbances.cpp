@@ -1,0 +1,92 @@
+#include "geaware/sim/disturbances.hpp"
+
+#include <cmath>
+#include <utility>
+
+#include "field_check.hpp"
+#include "geaware/model/vehicle_model.hpp"
+
+namespace geaware::sim {
+namespace {
+
+template <typename P>
+const P& validated(const P& p) {
+  auto errors = p.validate();
+  if (!errors.empty()) throw model::InvalidParameters(std::move(errors));
+  return p;
+}
+
+}  // namespace
+
+std::vector<model::FieldError> GroundTurbulenceParams::validate() const {
+  std::vector<model::FieldError> out;
+  detail::FieldCheck c(out);
+  c.nonNegative("force_std_N", force_std_N, "N");
+  c.nonNegative("torque_std_Nm", torque_std_Nm, "N·m");
+  c.range("correlation_time_s", correlation_time_s, 0.0, 1e3, false, "s");
+  c.range("scale_height_m", scale_height_m, 0.0, 1e2, false, "m");
+  c.range("cutoff_height_m", cutoff_height_m, 0.0, 1e3, false, "m");
+  return out;
+}
+
+double turbulenceIntensity(const GroundTurbulenceParams& p, double height_m) noexcept {
+  if (!(height_m < p.cutoff_height_m)) return 0.0;  // also ∞ and NaN
+  const double h = height_m > 0.0 ? height_m : 0.0;
+  const double hs2 = p.scale_height_m * p.scale_height_m;
+  const double f = hs2 / (h * h + hs2);
+  const double f_max = hs2 / (p.cutoff_height_m * p.cutoff_height_m + hs2);
+  return (f - f_max) / (1.0 - f_max);
+}
+
+GroundTurbulence::GroundTurbulence(const GroundTurbulenceParams& params, std::uint64_t scenario_seed)
+    : params_(validated(params)),
+      noise_(scenario_seed, salt::kGroundTurbulence),
+      force_(params_.correlation_time_s, noise_),
+      torque_(params_.correlation_time_s, noise_) {}
+
+void GroundTurbulence::beginStep(double /*t_s*/, double dt_s, const PlantState& /*state*/) noexcept {
+  if (!(std::isfinite(dt_s) && dt_s >= 0.0)) return;
+  force_.advance(dt_s, noise_);
+  torque_.advance(dt_s, noise_);
+}
+
+Wrench GroundTurbulence::wrenchAt(const std::array<double, 4>& d) const noexcept {
+  double s = 0.0;
+  for (double h : d) s += turbulenceIntensity(params_, h);
+  s *= 0.25;
+  Wrench w;
+  if (s > 0.0) {
+    w.force_B = s * params_.force_std_N.cwiseProduct(force_.value());
+    w.torque_B = s * params_.torque_std_Nm.cwiseProduct(torque_.value());
+  }
+  return w;
+}
+
+Wrench GroundTurbulence::wrench(const ContributionContext& ctx) noexcept {
+  return wrenchAt(ctx.surroundings.ground_distance_m);
+}
+
+std::vector<model::FieldError> WindParams::validate() const {
+  std::vector<model::FieldError> out;
+  detail::FieldCheck c(out);
+  c.finite("mean_W_mps", mean_W_mps, "m/s");
+  c.nonNegative("gust_std_mps", gust_std_mps, "m/s");
+  c.range("gust_correlation_time_s", gust_correlation_time_s, 0.0, 1e4, false, "s");
+  return out;
+}
+
+Wind::Wind(const WindParams& params, std::uint64_t scenario_seed)
+    : params_(validated(params)),
+      noise_(scenario_seed, salt::kWind),
+      gust_(params_.gust_correlation_time_s, noise_),
+      wind_W_(params_.mean_W_mps + params_.gust_std_mps.cwiseProduct(gust_.value())) {}
+
+const Eigen::Vector3d& Wind::advance(double dt_s) noexcept {
+  if (std::isfinite(dt_s) && dt_s >= 0.0) {
+    gust_.advance(dt_s, noise_);
+    wind_W_ = params_.mean_W_mps + params_.gust_std_mps.cwiseProduct(gust_.value());
+  }
+  return wind_W_;
+}
+
+}  // namespace geaware::sim

@@ -1,0 +1,99 @@
+#include "geaware/sim/mocap.hpp"
+
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include <Eigen/Geometry>
+
+#include "field_check.hpp"
+#include "geaware/model/vehicle_model.hpp"
+
+namespace geaware::sim {
+namespace {
+
+const MocapParams& validated(const MocapParams& p) {
+  auto errors = p.validate();
+  if (!errors.empty()) throw model::InvalidParameters(std::move(errors));
+  return p;
+}
+
+}  // namespace
+
+std::vector<model::FieldError> MocapParams::validate() const {
+  std::vector<model::FieldError> out;
+  detail::FieldCheck c(out);
+  c.range("rate_Hz", rate_Hz, 0.0, 1e4, false, "Hz");
+  c.range("latency_s", latency_s, 0.0, 1.0, true, "s");
+  if (std::isfinite(rate_Hz) && rate_Hz > 0.0 && std::isfinite(latency_s) &&
+      latency_s * rate_Hz + 2.0 > Mocap::kQueueCapacity) {
+    c.fail("latency_s", detail::show(latency_s),
+           "latency_s·rate_Hz + 2 ≤ " + std::to_string(Mocap::kQueueCapacity) + " (poses in flight)");
+  }
+  c.nonNegative("position_noise_std_m", position_noise_std_m, "m");
+  c.range("attitude_noise_std_rad", attitude_noise_std_rad, 0.0, 0.5, true, "rad");
+  c.range("dropout_probability", dropout_probability, 0.0, 1.0, true, "");
+  c.range("burst_probability", burst_probability, 0.0, 1.0, true, "");
+  if (burst_length_samples < 1) {
+    c.fail("burst_length_samples", std::to_string(burst_length_samples), "an integer ≥ 1");
+  }
+  return out;
+}
+
+Mocap::Mocap(const MocapParams& params, std::uint64_t scenario_seed)
+    : params_(validated(params)), noise_(scenario_seed, salt::kMocap), clock_(params_.rate_Hz) {}
+
+void Mocap::capture(const PlantState& s) noexcept {
+  ++captured_;
+  // Fixed draws per capture: burst, dropout, 3 position and 3 attitude normals.
+  const double u_burst = noise_.uniform();
+  const double u_drop = noise_.uniform();
+  const Eigen::Vector3d dp = params_.position_noise_std_m * noise_.normal3();
+  const Eigen::Vector3d dtheta = params_.attitude_noise_std_rad * noise_.normal3();
+
+  bool lost = false;
+  if (burst_left_ > 0) {
+    --burst_left_;
+    lost = true;
+  } else if (u_burst < params_.burst_probability) {
+    burst_left_ = params_.burst_length_samples - 1;
+    lost = true;
+  }
+  if (u_drop < params_.dropout_probability) lost = true;
+  if (lost) {
+    ++dropped_;
+    return;
+  }
+
+  Pending p;
+  p.sample.t_s = s.t_s;
+  p.sample.p_W = s.p_W + dp;
+  const double angle = dtheta.norm();
+  const Eigen::Quaterniond dq = angle > 0.0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, dtheta / angle))
+                                            : Eigen::Quaterniond::Identity();
+  p.sample.q_WB = (s.q_WB * dq).normalized();
+  p.deliver_s = s.t_s + params_.latency_s;
+  if (count_ == kQueueCapacity) {  // drop the oldest
+    head_ = (head_ + 1) % kQueueCapacity;
+    --count_;
+    ++overflowed_;
+  }
+  ring_[static_cast<std::size_t>((head_ + count_) % kQueueCapacity)] = p;
+  ++count_;
+}
+
+std::optional<model::MocapSample> Mocap::step(const PlantState& s) noexcept {
+  if (!isFinite(s)) {
+    ++rejected_;
+  } else if (clock_.due(s.t_s)) {
+    capture(s);
+  }
+  if (count_ == 0 || !std::isfinite(s.t_s)) return std::nullopt;
+  const Pending& oldest = ring_[static_cast<std::size_t>(head_)];
+  if (s.t_s + SampleClock::kTolerance_s < oldest.deliver_s) return std::nullopt;
+  head_ = (head_ + 1) % kQueueCapacity;
+  --count_;
+  return oldest.sample;
+}
+
+}  // namespace geaware::sim

@@ -1,0 +1,131 @@
+#include "geaware/sim/motors.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "geaware/model/motor.hpp"
+#include "geaware/model/units.hpp"
+
+namespace geaware::sim {
+
+Motors::Motors(const TruthParams& params, const std::array<double, 4>& initial_rpm)
+    : motor_(params.motor),
+      battery_(params.battery),
+      voltage_V_(params.battery.nominal_voltage_V),
+      charge_used_Ah_(params.battery.initial_charge_used_Ah) {
+  const RotorGeometry g = params.rotorGeometry();
+  for (std::size_t i = 0; i < 4; ++i) {
+    k_I_[i] = g.k_I_Nm_per_rpm2[i];
+    yaw_sign_[i] = params.yaw_sign[i];
+    n_rpm_[i] = std::clamp(std::isfinite(initial_rpm[i]) ? initial_rpm[i] : 0.0,
+                           motor_.min_speed_rpm, motor_.max_speed_rpm);
+    n_ss_rpm_[i] = n_rpm_[i];
+  }
+  if (battery_.enabled) {
+    // Settle the terminal voltage for the initial speeds (a fixed point; a few passes suffice
+    // because R_int·I ≪ V).
+    voltage_V_ = openCircuitVoltage();
+    for (int k = 0; k < 4; ++k) {
+      current_A_ = currentAt(n_rpm_, voltage_V_);
+      voltage_V_ = openCircuitVoltage() - battery_.internal_resistance_ohm * current_A_;
+    }
+  }
+}
+
+double Motors::openCircuitVoltage() const noexcept {
+  // Linear discharge curve; past the rated capacity the pack is held at its empty voltage (a
+  // runner should end the flight long before: the model is not meant for deep discharge).
+  const double used = std::clamp(charge_used_Ah_ / battery_.capacity_Ah, 0.0, 1.0);
+  return battery_.full_voltage_V - (battery_.full_voltage_V - battery_.empty_voltage_V) * used;
+}
+
+double Motors::currentAt(const std::array<double, 4>& n_rpm, double voltage_V) const noexcept {
+  // Mechanical power of each rotor, aerodynamic torque × speed: P = k_I·n²·Ω.
+  double power_W = 0.0;
+  for (std::size_t i = 0; i < 4; ++i) {
+    const double n = std::abs(n_rpm[i]);
+    power_W += k_I_[i] * n * n * n * model::kRpmToRadPerSec;
+  }
+  return battery_.idle_current_A + power_W / (battery_.efficiency * std::max(voltage_V, 1e-3));
+}
+
+double Motors::steadySpeedRpm(double throttle, double voltage_V) const noexcept {
+  const double t = std::clamp(throttle, 0.0, 1.0);
+  const auto& c = motor_.throttle;
+  double n = std::sqrt(std::max((c.c2_rpm2 * t + c.c1_rpm2) * t + c.c0_rpm2, 0.0));
+  if (battery_.enabled) n *= voltage_V / battery_.nominal_voltage_V;
+  return std::clamp(n, motor_.min_speed_rpm, motor_.max_speed_rpm);
+}
+
+double Motors::throttleForSteadySpeed(double n_rpm) const noexcept {
+  double scale = 1.0;
+  if (battery_.enabled) {
+    const std::array<double, 4> n{n_rpm, n_rpm, n_rpm, n_rpm};
+    double v = openCircuitVoltage();
+    for (int k = 0; k < 8; ++k)
+      v = openCircuitVoltage() - battery_.internal_resistance_ohm * currentAt(n, v);
+    scale = v / battery_.nominal_voltage_V;
+  }
+  return model::ThrottleCurve(motor_.throttle).throttle(n_rpm / scale);
+}
+
+void Motors::beginStep(const std::array<double, 4>& throttle, double dt_s) noexcept {
+  if (battery_.enabled) {
+    // Explicit in the current: the speeds (hence the load) at the start of the step and the
+    // voltage of the previous step. The electrical dynamics are much faster than 1 ms.
+    current_A_ = currentAt(n_rpm_, voltage_V_);
+    voltage_V_ = openCircuitVoltage() - battery_.internal_resistance_ohm * current_A_;
+  }
+  for (std::size_t i = 0; i < 4; ++i) n_ss_rpm_[i] = steadySpeedRpm(throttle[i], voltage_V_);
+  if (dt_s != dt_s_) {
+    // The decays at RK4's stage times, computed once per step length (a fixed-step run pays
+    // for the exponentials once).
+    dt_s_ = dt_s;
+    decay_half_ = std::exp(-0.5 * dt_s / motor_.time_constant_s);
+    decay_full_ = std::exp(-dt_s / motor_.time_constant_s);
+  }
+}
+
+void Motors::speedsAt(double s, std::array<double, 4>& n_rpm,
+                      std::array<double, 4>& n_dot_rpm_per_s) const noexcept {
+  const double decay = s == 0.0           ? 1.0
+                       : s == 0.5 * dt_s_ ? decay_half_
+                       : s == dt_s_       ? decay_full_
+                                          : std::exp(-s / motor_.time_constant_s);
+  for (std::size_t i = 0; i < 4; ++i) {
+    n_rpm[i] = n_ss_rpm_[i] + (n_rpm_[i] - n_ss_rpm_[i]) * decay;
+    n_dot_rpm_per_s[i] = (n_ss_rpm_[i] - n_rpm[i]) / motor_.time_constant_s;
+  }
+}
+
+void Motors::endStep() noexcept {
+  std::array<double, 4> n_dot{};
+  std::array<double, 4> n_end{};
+  speedsAt(dt_s_, n_end, n_dot);
+  n_rpm_ = n_end;
+  if (battery_.enabled) charge_used_Ah_ += current_A_ * dt_s_ / 3600.0;
+}
+
+Wrench motorTorques(double J_R_kgm2, const std::array<double, 4>& yaw_sign,
+                    const std::array<double, 4>& n_rpm,
+                    const std::array<double, 4>& n_dot_rpm_per_s, const Eigen::Vector3d& w_B,
+                    bool reaction, bool gyroscopic) noexcept {
+  Wrench w;
+  if (reaction) {
+    double tz = 0.0;
+    for (std::size_t i = 0; i < 4; ++i) tz += yaw_sign[i] * n_dot_rpm_per_s[i];
+    w.torque_B.z() = J_R_kgm2 * model::kRpmToRadPerSec * tz;
+  }
+  if (gyroscopic) {
+    // Total rotor angular momentum along z_B, h = Σ J_R·Ω_i·d_i with d_i = −yaw_i; the torque
+    // on the body is −ω × h·z_B = h·(−ω_y, ω_x, 0).
+    double h = 0.0;
+    for (std::size_t i = 0; i < 4; ++i) h -= yaw_sign[i] * n_rpm[i];
+    h *= J_R_kgm2 * model::kRpmToRadPerSec;
+    w.torque_B.x() += -h * w_B.y();
+    w.torque_B.y() += h * w_B.x();
+  }
+  return w;
+}
+
+}  // namespace geaware::sim

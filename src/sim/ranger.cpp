@@ -1,0 +1,132 @@
+#include "geaware/sim/ranger.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <utility>
+
+#include "field_check.hpp"
+#include "geaware/model/vehicle_model.hpp"
+#include "geaware/sim/terrains.hpp"
+
+namespace geaware::sim {
+namespace {
+
+const RangerParams& validated(const RangerParams& p) {
+  auto errors = p.validate();
+  if (!errors.empty()) throw model::InvalidParameters(std::move(errors));
+  return p;
+}
+
+}  // namespace
+
+std::vector<model::FieldError> RangerParams::validate() const {
+  std::vector<model::FieldError> out;
+  detail::FieldCheck c(out);
+  c.range("rate_Hz", rate_Hz, 0.0, 1e4, false, "Hz");
+  if (side < 1 || side > model::RangerFrame::kMaxSide) {
+    c.fail("side", std::to_string(side), "an integer in [1, " + std::to_string(model::RangerFrame::kMaxSide) + "]");
+  }
+  // Below π the outermost zones (at ±fov/2·(1 − 1/N)) stay short of the horizon.
+  c.range("fov_rad", fov_rad, 0.0, std::numbers::pi * 0.9, false, "rad");
+  c.finite("mount_B", mount_B, "m");
+  c.nonNegative("min_range_m", min_range_m, "m");
+  c.range("max_range_m", max_range_m, 0.0, 1e3, false, "m");
+  if (std::isfinite(min_range_m) && std::isfinite(max_range_m) && min_range_m >= max_range_m) {
+    c.fail("min_range_m", detail::show(min_range_m), "less than max_range_m = " + detail::show(max_range_m));
+  }
+  c.range("max_incidence_rad", max_incidence_rad, 0.0, std::numbers::pi / 2.0, true, "rad");
+  c.nonNegative("noise_floor_m", noise_floor_m, "m");
+  c.nonNegative("noise_fraction", noise_fraction, "");
+  c.range("outlier_probability", outlier_probability, 0.0, 1.0, true, "");
+  return out;
+}
+
+LatticeRanger::LatticeRanger(const RangerParams& params, std::uint64_t scenario_seed)
+    : params_(validated(params)),
+      noise_(scenario_seed, salt::kRanger),
+      clock_(params_.rate_Hz),
+      min_cos_incidence_(std::cos(params_.max_incidence_rad)) {
+  blank_.side = params_.side;
+  blank_.fov_rad = params_.fov_rad;
+  blank_.mount_B = params_.mount_B;
+  blank_.range_m.fill(0.0);
+  blank_.valid.fill(false);
+  for (int i = 0; i < params_.side; ++i) {
+    for (int j = 0; j < params_.side; ++j) {
+      dir_B_[static_cast<std::size_t>(blank_.index(i, j))] = blank_.zoneDirection_B(i, j);
+    }
+  }
+  zones_to_outlier_ = noise_.geometric(params_.outlier_probability);
+}
+
+std::optional<model::RangerFrame> LatticeRanger::sample(const PlantState& s, const Terrain* terrain) noexcept {
+  if (!isFinite(s)) {
+    ++rejected_;
+    return std::nullopt;
+  }
+  if (!clock_.due(s.t_s)) return std::nullopt;
+  return measure(s, terrain);
+}
+
+model::RangerFrame LatticeRanger::measure(const PlantState& s, const Terrain* terrain) noexcept {
+  model::RangerFrame f = blank_;
+  f.t_s = s.t_s;
+  const Eigen::Matrix3d R_WB = s.q_WB.normalized().toRotationMatrix();
+  const Eigen::Vector3d origin_W = s.p_W + R_WB * params_.mount_B;
+  const double r_min = params_.min_range_m;
+  const double r_max = params_.max_range_m;
+  const int zones = params_.side * params_.side;
+
+  // Planes (flat ground, tilted board) in closed form, in the body frame: with the plane's
+  // normal n_B = Rᵀn and c = n·(p0 − o), zone d hits at r = c/(n_B·d) and meets the surface at
+  // cos(incidence) = −n_B·d. Same results as the terrains' own ray casts, without two virtual
+  // calls per zone.
+  std::optional<Eigen::Vector3d> n_B;
+  double c = 0.0;
+  if (const auto* flat = dynamic_cast<const FlatGround*>(terrain)) {
+    n_B = R_WB.row(2).transpose();
+    c = flat->level() - origin_W.z();
+  } else if (dynamic_cast<const TiltedPlane*>(terrain) != nullptr) {
+    const Eigen::Vector3d n_W = terrain->normalAt(0.0, 0.0);
+    n_B = R_WB.transpose() * n_W;
+    c = n_W.dot(Eigen::Vector3d(0.0, 0.0, terrain->heightAt(0.0, 0.0)) - origin_W);
+  }
+
+  for (int k = 0; k < zones; ++k) {
+    const auto idx = static_cast<std::size_t>(k);
+    // 1. Outlier zone: a spurious return anywhere in the working range.
+    if (--zones_to_outlier_ <= 0) {
+      zones_to_outlier_ = noise_.geometric(params_.outlier_probability);
+      f.range_m[idx] = r_min + (r_max - r_min) * noise_.uniform();
+      f.valid[idx] = true;
+      continue;
+    }
+    // 2. The true range along the zone's centre ray and the cosine of the incidence angle.
+    double r = 0.0;
+    double cos_incidence = 0.0;
+    if (n_B) {
+      const double dn = n_B->dot(dir_B_[idx]);
+      if (!(dn < 0.0)) continue;  // looking away from the plane
+      r = c / dn;
+      cos_incidence = -dn;
+    } else {
+      if (terrain == nullptr) continue;
+      const Eigen::Vector3d dir_W = R_WB * dir_B_[idx];
+      const std::optional<double> hit = terrain->rayCast(origin_W, dir_W, r_max);
+      if (!hit) continue;
+      r = *hit;
+      const Eigen::Vector3d p_hit = origin_W + r * dir_W;
+      cos_incidence = -dir_W.dot(terrain->normalAt(p_hit.x(), p_hit.y()));
+    }
+    // 3. Out of the working range, or grazing: no return.
+    if (!(r >= r_min && r <= r_max) || cos_incidence < min_cos_incidence_) continue;
+    // 4. Range noise growing with range.
+    const double measured = r + (params_.noise_floor_m + params_.noise_fraction * r) * noise_.normal();
+    f.range_m[idx] = measured > 0.0 ? measured : 0.0;
+    f.valid[idx] = true;
+  }
+  return f;
+}
+
+}  // namespace geaware::sim

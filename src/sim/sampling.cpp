@@ -1,0 +1,115 @@
+#include "geaware/sim/sampling.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace geaware::sim {
+namespace {
+
+std::uint64_t splitmix64(std::uint64_t z) noexcept {
+  z += 0x9e3779b97f4a7c15ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+// Doornik, "An Improved Ziggurat Method to Generate Normal Random Samples" (2005), ZIGNOR with
+// 128 layers of equal area V; R is the start of the tail.
+constexpr int kZigLayers = 128;
+constexpr double kZigR = 3.442619855899;
+constexpr double kZigV = 9.91256303526217e-3;
+
+struct ZigguratTables {
+  std::array<double, kZigLayers + 1> x{};  // layer edges, x[1] = R > x[2] > … > x[128] = 0; x[0] = V/f(R)
+  std::array<double, kZigLayers> r{};      // x[i+1]/x[i]: the part of layer i surely under the curve
+
+  ZigguratTables() {
+    double f = std::exp(-0.5 * kZigR * kZigR);
+    x[0] = kZigV / f;  // the bottom layer: a box of area V including the tail
+    x[1] = kZigR;
+    x[kZigLayers] = 0.0;
+    for (int i = 2; i < kZigLayers; ++i) {
+      x[i] = std::sqrt(-2.0 * std::log(kZigV / x[i - 1] + f));
+      f = std::exp(-0.5 * x[i] * x[i]);
+    }
+    for (int i = 0; i < kZigLayers; ++i) r[i] = x[i + 1] / x[i];
+  }
+};
+
+const ZigguratTables& zigguratTables() {
+  static const ZigguratTables tables;
+  return tables;
+}
+
+}  // namespace
+
+std::uint64_t streamSeed(std::uint64_t scenario_seed, std::uint64_t stream_salt) noexcept {
+  return splitmix64(splitmix64(scenario_seed) ^ stream_salt);
+}
+
+NoiseSource::NoiseSource(std::uint64_t scenario_seed, std::uint64_t stream_salt)
+    : engine_(streamSeed(scenario_seed, stream_salt)),
+      zig_x_(zigguratTables().x.data()),
+      zig_r_(zigguratTables().r.data()) {}
+
+double NoiseSource::normalSlow(double u, int i) noexcept {
+  // The bottom layer's overhang is the tail beyond R.
+  if (i == 0) return normalTail(u < 0.0);
+  // The wedge between x[i+1] and x[i]: accept under the density, else start over.
+  const double x = u * zig_x_[i];
+  const double f0 = std::exp(-0.5 * (zig_x_[i] * zig_x_[i] - x * x));
+  const double f1 = std::exp(-0.5 * (zig_x_[i + 1] * zig_x_[i + 1] - x * x));
+  if (f1 + uniform() * (f0 - f1) < 1.0) return x;
+  return normal();
+}
+
+double NoiseSource::normalTail(bool negative) noexcept {
+  // Marsaglia (1964): exponential proposals beyond R.
+  double x = 0.0;
+  double y = 0.0;
+  do {
+    x = std::log(uniform()) / kZigR;
+    y = std::log(uniform());
+  } while (-2.0 * y < x * x);
+  return negative ? x - kZigR : kZigR - x;
+}
+
+std::int64_t NoiseSource::geometric(double p) noexcept {
+  const double u = uniform();
+  constexpr auto kNever = std::numeric_limits<std::int64_t>::max() / 2;
+  if (!(p > 0.0)) return kNever;
+  if (p >= 1.0) return 1;
+  const double k = std::floor(std::log(u) / std::log1p(-p));
+  return k >= static_cast<double>(kNever) ? kNever : static_cast<std::int64_t>(k) + 1;
+}
+
+bool SampleClock::due(double t_s) noexcept {
+  if (t_s + kTolerance_s < next_s()) return false;
+  // The first index strictly after t (with the same tolerance).
+  const auto k = static_cast<std::int64_t>(std::floor((t_s + kTolerance_s) / period_s_)) + 1;
+  next_index_ = k > next_index_ ? k : next_index_ + 1;
+  return true;
+}
+
+GaussMarkov3::GaussMarkov3(double correlation_time_s, NoiseSource& noise) noexcept
+    : tau_s_(correlation_time_s), x_(noise.normal3()) {}
+
+const Eigen::Vector3d& GaussMarkov3::advance(double dt_s, NoiseSource& noise) noexcept {
+  if (dt_s != last_dt_s_) {
+    last_dt_s_ = dt_s;
+    phi_ = std::exp(-dt_s / tau_s_);
+    drive_ = std::sqrt(1.0 - phi_ * phi_);
+  }
+  x_ = phi_ * x_ + drive_ * noise.normal3();
+  return x_;
+}
+
+bool isFinite(const PlantState& s) noexcept {
+  // A NaN or ±∞ anywhere makes the sum non-finite (physical magnitudes cannot overflow it).
+  double acc = s.t_s;
+  acc += s.p_W.sum() + s.v_W.sum() + s.q_WB.coeffs().sum() + s.w_B.sum() + s.a_W.sum() + s.w_dot_B.sum();
+  for (double n : s.n_rpm) acc += n;
+  return std::isfinite(acc);
+}
+
+}  // namespace geaware::sim

@@ -1,0 +1,202 @@
+#include "geaware/sim/truth_params.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+
+#include <Eigen/Eigenvalues>
+
+#include "geaware/model/mixer.hpp"
+#include "geaware/model/units.hpp"
+
+namespace geaware::sim {
+namespace {
+
+std::string show(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
+/// Collects errors, naming the field as a key path (the shape of model::VehicleParams::validate).
+class Checker {
+ public:
+  explicit Checker(std::vector<model::FieldError>& out) : out_(out) {}
+  bool range(const std::string& field, double v, double lo, double hi, bool lo_inclusive,
+             const char* unit) {
+    const bool ok = std::isfinite(v) && (lo_inclusive ? v >= lo : v > lo) && v <= hi;
+    if (!ok) {
+      out_.push_back({field, show(v),
+                      std::string("a finite number in ") + (lo_inclusive ? "[" : "(") + show(lo) +
+                          ", " + show(hi) + "] " + unit});
+    }
+    return ok;
+  }
+  bool finite(const std::string& field, const Eigen::Vector3d& v, double bound, const char* unit) {
+    bool ok = true;
+    const char* axis[3] = {".x", ".y", ".z"};
+    for (int k = 0; k < 3; ++k) ok &= range(field + axis[k], v[k], -bound, bound, true, unit);
+    return ok;
+  }
+  void fail(const std::string& field, const std::string& value, const std::string& expected) {
+    out_.push_back({field, value, expected});
+  }
+
+ private:
+  std::vector<model::FieldError>& out_;
+};
+
+}  // namespace
+
+RotorGeometry TruthParams::rotorGeometry() const {
+  RotorGeometry g;
+  for (std::size_t i = 0; i < 4; ++i) {
+    g.position_B[i] = rotor_position_B[i] - cog_offset_B;  // the aerodynamics work about the CoM
+    g.spin[i] = yaw_sign[i];
+    // A motor that gives more thrust at the same speed (a slightly different propeller) gives
+    // proportionally more drag torque too: both scale with the blade's lift coefficient.
+    g.k_T_N_per_rpm2[i] = k_T_N_per_rpm2 * thrust_multiplier[i];
+    g.k_I_Nm_per_rpm2[i] = k_I_Nm_per_rpm2 * thrust_multiplier[i];
+  }
+  g.radius_m = propeller_radius_m;
+  return g;
+}
+
+std::vector<model::FieldError> TruthParams::validate() const {
+  std::vector<model::FieldError> errors;
+  Checker c(errors);
+  c.range("mass_kg", mass_kg, 0.0, 1000.0, false, "kg");
+
+  // Inertia: finite, symmetric, positive definite, principal moments satisfying the triangle
+  // inequalities (no rigid body has other moments).
+  bool j_finite = true;
+  for (int r = 0; r < 3; ++r) {
+    for (int k = 0; k < 3; ++k) {
+      j_finite &= c.range("inertia_kgm2(" + std::to_string(r) + "," + std::to_string(k) + ")",
+                          inertia_kgm2(r, k), -1000.0, 1000.0, true, "kg·m²");
+    }
+  }
+  if (j_finite) {
+    if (!inertia_kgm2.isApprox(inertia_kgm2.transpose(), 1e-12)) {
+      c.fail("inertia_kgm2", "asymmetric", "a symmetric matrix");
+    } else {
+      const Eigen::Vector3d ev =
+          Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia_kgm2).eigenvalues();
+      if (!(ev.minCoeff() > 0.0)) {
+        c.fail("inertia_kgm2", "smallest principal moment " + show(ev.minCoeff()),
+               "positive definite");
+      } else if (ev[2] > (ev[0] + ev[1]) * (1.0 + 1e-9)) {
+        c.fail("inertia_kgm2",
+               "principal moments " + show(ev[0]) + ", " + show(ev[1]) + ", " + show(ev[2]),
+               "the largest at most the sum of the other two");
+      }
+    }
+  }
+
+  c.finite("cog_offset_B", cog_offset_B, 1.0, "m");
+  for (std::size_t i = 0; i < 4; ++i) {
+    const std::string idx = "[" + std::to_string(i) + "]";
+    c.finite("rotor_position_B" + idx, rotor_position_B[i], 10.0, "m");
+    if (!(yaw_sign[i] == 1.0 || yaw_sign[i] == -1.0))
+      c.fail("yaw_sign" + idx, show(yaw_sign[i]), "+1 or -1");
+    c.range("thrust_multiplier" + idx, thrust_multiplier[i], 0.5, 1.5, true, "(relative to k_T)");
+  }
+  c.range("propeller_radius_m", propeller_radius_m, 0.0, 5.0, false, "m");
+  c.range("k_T_N_per_rpm2", k_T_N_per_rpm2, 0.0, 1.0, false, "N/rpm²");
+  c.range("k_I_Nm_per_rpm2", k_I_Nm_per_rpm2, 0.0, 1.0, true, "N·m/rpm²");
+  c.range("gravity_mps2", gravity_mps2, 0.0, 100.0, true, "m/s²");
+
+  c.range("motor.time_constant_s", motor.time_constant_s, 0.0, 10.0, false, "s");
+  c.range("motor.J_R_kgm2", motor.J_R_kgm2, 0.0, 1.0, true, "kg·m²");
+  const bool lo_ok = c.range("motor.min_speed_rpm", motor.min_speed_rpm, 0.0, 1e6, true, "rpm");
+  const bool hi_ok = c.range("motor.max_speed_rpm", motor.max_speed_rpm, 0.0, 1e6, false, "rpm");
+  if (lo_ok && hi_ok && !(motor.max_speed_rpm > motor.min_speed_rpm)) {
+    c.fail("motor.max_speed_rpm", show(motor.max_speed_rpm),
+           "greater than motor.min_speed_rpm = " + show(motor.min_speed_rpm));
+  }
+  const auto& t = motor.throttle;
+  const bool c2_ok = c.range("motor.throttle.c2_rpm2", t.c2_rpm2, -1e12, 1e12, true, "rpm²");
+  const bool c1_ok = c.range("motor.throttle.c1_rpm2", t.c1_rpm2, -1e12, 1e12, true, "rpm²");
+  const bool c0_ok = c.range("motor.throttle.c0_rpm2", t.c0_rpm2, 0.0, 1e12, true, "rpm²");
+  if (c2_ok && c1_ok && c0_ok && !(t.c1_rpm2 > 0.0 && t.c1_rpm2 + 2.0 * t.c2_rpm2 > 0.0)) {
+    c.fail("motor.throttle", "c1=" + show(t.c1_rpm2) + ", c2=" + show(t.c2_rpm2),
+           "n² strictly increasing on throttle [0, 1] (c1 > 0 and c1 + 2·c2 > 0)");
+  }
+
+  const auto& b = battery;
+  const bool vf_ok = c.range("battery.full_voltage_V", b.full_voltage_V, 0.0, 1000.0, false, "V");
+  const bool ve_ok = c.range("battery.empty_voltage_V", b.empty_voltage_V, 0.0, 1000.0, false, "V");
+  if (vf_ok && ve_ok && !(b.empty_voltage_V < b.full_voltage_V)) {
+    c.fail("battery.empty_voltage_V", show(b.empty_voltage_V),
+           "below battery.full_voltage_V = " + show(b.full_voltage_V));
+  }
+  c.range("battery.nominal_voltage_V", b.nominal_voltage_V, 0.0, 1000.0, false, "V");
+  c.range("battery.internal_resistance_ohm", b.internal_resistance_ohm, 0.0, 10.0, true, "Ω");
+  const bool cap_ok = c.range("battery.capacity_Ah", b.capacity_Ah, 0.0, 1000.0, false, "A·h");
+  if (cap_ok)
+    c.range("battery.initial_charge_used_Ah", b.initial_charge_used_Ah, 0.0, b.capacity_Ah, true,
+            "A·h");
+  c.range("battery.efficiency", b.efficiency, 0.0, 1.0, false, "");
+  c.range("battery.idle_current_A", b.idle_current_A, 0.0, 1000.0, true, "A");
+
+  for (std::size_t i = 0; i < landing_feet_B.size(); ++i) {
+    c.finite("landing_feet_B[" + std::to_string(i) + "]", landing_feet_B[i], 10.0, "m");
+  }
+  return errors;
+}
+
+TruthParams fromNominal(const model::VehicleParams& nominal) {
+  TruthParams p;
+  p.mass_kg = nominal.mass_kg;
+  p.inertia_kgm2 = nominal.inertia_kgm2.asDiagonal();
+  p.rotor_position_B = model::Mixer::rotorPositions_B(nominal.diagonal_rotor_distance_m);
+  const Eigen::Vector4d& yaw = model::Mixer::yawSigns();
+  for (int i = 0; i < 4; ++i) p.yaw_sign[static_cast<std::size_t>(i)] = yaw[i];
+  p.propeller_radius_m = nominal.propeller_radius_m;
+  p.k_T_N_per_rpm2 = nominal.rotor.k_T_N_per_rpm2;
+  p.k_I_Nm_per_rpm2 = nominal.rotor.k_I_Nm_per_rpm2;
+  p.motor.J_R_kgm2 = nominal.rotor.J_R_kgm2;
+  p.motor.throttle = nominal.throttle;
+  p.gravity_mps2 = model::kGravity;
+  // Four feet under the arms, halfway out, at the lowest rotor-plane height: the landing gear
+  // holds the rotor plane at min_rotor_plane_height_m above flat ground.
+  for (const Eigen::Vector3d& r : p.rotor_position_B) {
+    p.landing_feet_B.emplace_back(0.5 * r.x(), 0.5 * r.y(), -nominal.min_rotor_plane_height_m);
+  }
+  return p;
+}
+
+TruthParams perturbed(const TruthParams& base, const MismatchSpec& spec, std::uint64_t seed) {
+  // mt19937_64 and the explicit mapping below are specified bit for bit by the standard, so the
+  // same seed gives the same vehicle everywhere (std::uniform_real_distribution is not).
+  std::mt19937_64 rng(seed);
+  const auto uniform = [&rng](double bound) {
+    const double u01 = static_cast<double>(rng() >> 11) * 0x1.0p-53;  // [0, 1)
+    return bound * (2.0 * u01 - 1.0);
+  };
+  TruthParams p = base;
+  p.mass_kg = base.mass_kg * (1.0 + uniform(spec.mass_rel));
+  // Scale the principal moments in the inertia's own axes; clamp so that the triangle
+  // inequality of a rigid body still holds.
+  // The draws happen whatever the bounds, so that one seed gives the same mass whether or
+  // not the inertia is perturbed too.
+  Eigen::Vector3d factor;
+  for (int k = 0; k < 3; ++k) factor[k] = 1.0 + uniform(spec.inertia_rel);
+  if (spec.inertia_rel != 0.0) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(base.inertia_kgm2);
+    Eigen::Vector3d ev = es.eigenvalues().cwiseProduct(factor);
+    if (ev[2] > ev[0] + ev[1]) ev[2] = ev[0] + ev[1];
+    if (ev[1] > ev[0] + ev[2]) ev[1] = ev[0] + ev[2];
+    if (ev[0] > ev[1] + ev[2]) ev[0] = ev[1] + ev[2];
+    const Eigen::Matrix3d J = es.eigenvectors() * ev.asDiagonal() * es.eigenvectors().transpose();
+    p.inertia_kgm2 = 0.5 * (J + J.transpose());
+  }
+  p.cog_offset_B =
+      base.cog_offset_B + Eigen::Vector3d(uniform(spec.cog_offset_m), uniform(spec.cog_offset_m),
+                                          uniform(spec.cog_offset_z_m));
+  for (double& m : p.thrust_multiplier) m *= 1.0 + uniform(spec.thrust_spread_rel);
+  return p;
+}
+
+}  // namespace geaware::sim

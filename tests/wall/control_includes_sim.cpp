@@ -1,0 +1,4 @@
+// Wall probe: the controller must not compile against the simulator's headers.
+#include <geaware/control/controller.hpp>
+#include <geaware/sim/plant.hpp>
+int wallProbe() { return 0; }
