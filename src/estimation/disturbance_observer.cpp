@@ -1,0 +1,146 @@
+#include "geaware/estimation/disturbance_observer.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "geaware/model/units.hpp"
+
+namespace geaware::estimation {
+namespace {
+
+std::string show(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
+const DisturbanceObserverParams& validated(const DisturbanceObserverParams& p) {
+  if (auto errors = p.validate(); !errors.empty())
+    throw model::InvalidParameters(std::move(errors));
+  return p;
+}
+
+}  // namespace
+
+std::vector<model::FieldError> DisturbanceObserverParams::validate() const {
+  std::vector<model::FieldError> e;
+  if (!(std::isfinite(rate_hz) && rate_hz > 0.0)) {
+    e.push_back({"disturbance_observer.rate_hz", show(rate_hz), "a finite number > 0"});
+  }
+  if (!(std::isfinite(filter_cutoff_hz) && filter_cutoff_hz > 0.0 &&
+        filter_cutoff_hz < 0.5 * rate_hz)) {
+    e.push_back({"disturbance_observer.filter_cutoff_hz", show(filter_cutoff_hz),
+                 "a number in (0, rate_hz/2)"});
+  }
+  if (!(std::isfinite(min_thrust_fraction) && min_thrust_fraction > 0.0)) {
+    e.push_back({"disturbance_observer.min_thrust_fraction", show(min_thrust_fraction),
+                 "a finite number > 0"});
+  }
+  return e;
+}
+
+DisturbanceObserver::DisturbanceObserver(const model::VehicleModel& vehicle,
+                                         DisturbanceObserverParams params)
+    : params_(validated(params)),
+      mass_kg_(vehicle.params().mass_kg),
+      inertia_kgm2_(vehicle.params().inertia_kgm2),
+      mixer_(vehicle.mixer()),
+      w_filter_(params_.filter_cutoff_hz, params_.rate_hz),
+      tau_filter_(params_.filter_cutoff_hz, params_.rate_hz),
+      accel_filter_(params_.filter_cutoff_hz, params_.rate_hz),
+      thrust_filter_(params_.filter_cutoff_hz, params_.rate_hz) {}
+
+void DisturbanceObserver::reset() noexcept {
+  const auto& p = params_;
+  w_filter_ = control::LowPass2<3>(p.filter_cutoff_hz, p.rate_hz);
+  tau_filter_ = control::LowPass2<3>(p.filter_cutoff_hz, p.rate_hz);
+  accel_filter_ = control::LowPass2<3>(p.filter_cutoff_hz, p.rate_hz);
+  thrust_filter_ = control::LowPass2<1>(p.filter_cutoff_hz, p.rate_hz);
+  have_prev_ = false;
+  last_ = DisturbanceEstimate{};
+  status_ = ObserverStatus::kWarmingUp;
+  rejected_ = 0;
+}
+
+DisturbanceEstimate DisturbanceObserver::update(const DisturbanceObserverInput& in) noexcept {
+  const double qn = in.q_WB.norm();
+  if (!(std::isfinite(in.t_s) && in.gyro_B.allFinite() && in.accel_B.allFinite() &&
+        in.rotor_speeds_rpm.allFinite() && in.q_WB.coeffs().allFinite() && qn > 0.5 && qn < 2.0)) {
+    ++rejected_;
+    status_ = ObserverStatus::kNonFinite;
+    DisturbanceEstimate out = last_;
+    out.valid = false;
+    return out;
+  }
+  if (have_prev_ && !(in.t_s > t_prev_)) {
+    ++rejected_;
+    status_ = ObserverStatus::kTimeNotIncreasing;
+    DisturbanceEstimate out = last_;
+    out.valid = false;
+    return out;
+  }
+
+  // 1. Thrust and body torque from the measured rotor speeds through the mixer (paper eq. 2).
+  const Eigen::Vector4d wrench = mixer_.wrench(in.rotor_speeds_rpm.cwiseAbs2());
+
+  // 2. The same low-pass on every input.
+  const Eigen::Vector3d w_f = w_filter_.update(in.gyro_B);
+  const Eigen::Vector3d tau_f = tau_filter_.update(wrench.tail<3>());
+  const Eigen::Vector3d f_f = accel_filter_.update(in.accel_B);
+  const double thrust_f = thrust_filter_.update(Eigen::Matrix<double, 1, 1>(wrench(0)))(0);
+  const Eigen::Quaterniond q = in.q_WB.normalized();
+
+  if (!have_prev_) {
+    w_prev_ = w_f;
+    tau_prev_ = tau_f;
+    f_prev_ = f_f;
+    thrust_prev_ = thrust_f;
+    q_prev_ = q;
+    t_prev_ = in.t_s;
+    have_prev_ = true;
+    status_ = ObserverStatus::kWarmingUp;
+    last_ = DisturbanceEstimate{};
+    last_.t_s = in.t_s;
+    return last_;
+  }
+
+  // 3. Everything at the middle of the interval, where the difference quotient of ω_f is
+  //    second-order accurate.
+  const double dt = in.t_s - t_prev_;
+  DisturbanceEstimate out;
+  out.valid = true;
+  out.t_s = in.t_s - 0.5 * dt;
+  out.w_f_B = 0.5 * (w_f + w_prev_);
+  out.w_dot_f_B = (w_f - w_prev_) / dt;
+  out.tau_B_f = 0.5 * (tau_f + tau_prev_);
+  out.thrust_f_N = 0.5 * (thrust_f + thrust_prev_);
+  const Eigen::Vector3d f_mid = 0.5 * (f_f + f_prev_);
+  const Eigen::Quaterniond q_mid = q_prev_.slerp(0.5, q);
+
+  // 4. Paper eq. 6. Force: in the body frame, the specific force minus the rotors' T/m along
+  //    z_B; rotated to the world. Torque: Euler's equation with the filtered rates.
+  const Eigen::Vector3d& J = inertia_kgm2_;
+  out.a_ext_B = f_mid - Eigen::Vector3d::UnitZ() * (out.thrust_f_N / mass_kg_);
+  out.a_ext_W = q_mid * out.a_ext_B;
+  out.tau_ext_B =
+      J.cwiseProduct(out.w_dot_f_B) + out.w_f_B.cross(J.cwiseProduct(out.w_f_B)) - out.tau_B_f;
+
+  // 5. F̃_G = m·z_Wᵀ·ã_ext / T̃ (the paper's hover-descent identification).
+  if (out.thrust_f_N > params_.min_thrust_fraction * mass_kg_ * model::kGravity) {
+    out.f_g_valid = true;
+    out.f_g_ratio = mass_kg_ * out.a_ext_W.z() / out.thrust_f_N;
+  }
+
+  w_prev_ = w_f;
+  tau_prev_ = tau_f;
+  f_prev_ = f_f;
+  thrust_prev_ = thrust_f;
+  q_prev_ = q;
+  t_prev_ = in.t_s;
+  status_ = ObserverStatus::kOk;
+  last_ = out;
+  return out;
+}
+
+}  // namespace geaware::estimation
