@@ -1,0 +1,67 @@
+#pragma once
+// Identification from flight logs (formats in ident/rig_logs.hpp):
+//
+//  - F_G from a hover descent (paper eq. 10): F̃_G = m·z_Wᵀã_ext/T̃ with T̃ = k_T·Σn², i.e.
+//    m·a_ext,z = T̃·g2/(h² + g1); g1 and g2 with Ceres and a robust loss (k_T given: the
+//    external-acceleration observer was computed with it). Assumes a near-level attitude
+//    (z_Wᵀz_B ≈ 1), as in a hover.
+//  - the drag table D(h) (paper eq. 20): in the body frame the in-plane external force is the
+//    rotor drag, m·x_Bᵀã_ext = −d_x·x_Bᵀv and m·y_Bᵀã_ext = −d_y·y_Bᵀv (f_G is along z_B and
+//    does not enter); per height band, linear least squares gives d_x(h) and d_y(h).
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "geaware/ident/least_squares.hpp"
+#include "geaware/ident/rig_logs.hpp"
+#include "geaware/model/vehicle_params.hpp"
+
+namespace geaware::ident {
+
+struct HoverThrustFit {
+  Estimate g1_m2;
+  Estimate g2_m2;
+  Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();  ///< of (g1, g2)
+  FitStats stats;                                        ///< residuals in N
+  double h_min_m = kNaN;
+  double h_max_m = kNaN;
+  std::vector<std::string> warnings;
+};
+
+/// Throws IdentError when the log cannot constrain g1 and g2.
+[[nodiscard]] HoverThrustFit fitHoverAdditionalThrust(const FlightLog& log, double mass_kg,
+                                                      double k_T_N_per_rpm2,
+                                                      const RobustOptions& robust = {});
+
+struct DragFitOptions {
+  RobustOptions robust;
+  int height_bands = 5;               ///< equal-count height bands
+  std::size_t min_band_samples = 50;  ///< bands with fewer samples are not fitted
+};
+
+struct DragBand {
+  double h_min_m = kNaN;
+  double h_max_m = kNaN;
+  double h_mean_m = kNaN;
+  std::size_t count = 0;
+  Estimate d_x_N_per_mps;
+  Estimate d_y_N_per_mps;
+  FitStats x, y;  ///< residuals in N
+};
+
+struct DragFit {
+  std::vector<DragBand> bands;  ///< lowest first, only bands that could be fitted
+  std::vector<std::string> warnings;
+};
+
+/// Throws IdentError when no band can be fitted (too few samples, no horizontal speed).
+[[nodiscard]] DragFit fitDrag(const FlightLog& log, double mass_kg,
+                              const DragFitOptions& options = {});
+
+/// The drag table of a vehicle file from the fitted bands (heights: the bands' mean heights,
+/// exactly the logged height for a band flown at one height).
+[[nodiscard]] model::DragTableParams dragTable(const DragFit& fit);
+
+}  // namespace geaware::ident

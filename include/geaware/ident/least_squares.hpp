@@ -1,0 +1,109 @@
+#pragma once
+// The two solvers behind every fit of ident/: linear least squares and nonlinear least squares
+// (Ceres), both with the same robust scheme and the same uncertainty (docs/identification.md,
+// "Robust loss" and "Uncertainty"):
+//
+//  1. a robust fit: iteratively reweighted least squares (linear) or Ceres with a Huber or
+//     Cauchy loss on every sample (nonlinear), with the loss threshold set in units of the
+//     residuals' robust standard deviation s = 1.4826·MAD;
+//  2. samples whose residual exceeds `outlier_sigmas`·s are declared outliers (counted in the
+//     result) and dropped;
+//  3. a plain least-squares fit of the remaining samples, from the robust solution;
+//  4. covariance σ²·(JᵀWJ)⁻¹ with the Jacobian J at the optimum and σ² = Σ w·r²/(n − p) from
+//     the residuals, corrected for the truncation of a normal distribution at ±outlier_sigmas.
+//
+// With clean Gaussian data (almost) nothing is dropped and the result is the ordinary least-
+// squares estimate with its textbook standard errors; with gross outliers the robust step
+// keeps them from pulling the fit, and step 4 reports the uncertainty of the inliers.
+
+#include <cmath>
+#include <cstddef>
+#include <functional>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace geaware::ident {
+
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// A fit that cannot be done (too few samples, data that do not constrain the parameters):
+/// what() names the log and the parameter.
+class IdentError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// A fitted parameter: its value and standard error, in the parameter's unit.
+struct Estimate {
+  double value = kNaN;
+  double std_error = kNaN;
+  [[nodiscard]] bool valid() const noexcept { return value == value && std_error == std_error; }
+};
+
+/// Residual statistics of one fit.
+struct FitStats {
+  double residual_rms = kNaN;   ///< RMS of the (weighted) residuals of the samples kept [output unit]
+  std::size_t count = 0;        ///< samples kept in the final fit
+  std::size_t outliers = 0;     ///< samples dropped as outliers
+};
+
+enum class RobustLoss { kNone, kHuber, kCauchy };
+
+struct RobustOptions {
+  RobustLoss loss = RobustLoss::kHuber;
+  /// Loss threshold in robust standard deviations of the residuals (Huber's 1.345 gives 95 %
+  /// efficiency on normal data; 2.385 is the usual choice for Cauchy) [-].
+  double loss_scale = 1.345;
+  /// Residuals beyond this many robust standard deviations are outliers; ≤ 0 keeps all [-].
+  double outlier_sigmas = 4.0;
+};
+
+/// Result of a linear or nonlinear fit.
+struct LeastSquaresFit {
+  Eigen::VectorXd x;            ///< parameters
+  Eigen::MatrixXd covariance;   ///< σ²·(JᵀWJ)⁻¹
+  FitStats stats;
+  bool ok = false;              ///< false: not enough samples or a singular problem (see message)
+  std::string message;
+
+  [[nodiscard]] Estimate estimate(int i) const {
+    return {x(i), std::sqrt(covariance(i, i))};
+  }
+};
+
+/// Sample i of a linear problem y = xᵀβ with weight w: fills `row` (p values), `y` and `w`
+/// (1 for unweighted samples). Return false to leave the sample out.
+using LinearRow = std::function<bool(std::size_t i, double* row, double& y, double& w)>;
+
+/// Weighted linear least squares of `samples` rows with `parameters` unknowns (robust as above).
+[[nodiscard]] LeastSquaresFit fitLinear(std::size_t samples, int parameters, const LinearRow& row,
+                                        const RobustOptions& robust = {});
+
+/// Residual of sample i of a nonlinear problem at parameters x, and its gradient dr/dx
+/// (`gradient` may be null). Return false when x lies outside the model's domain.
+using NonlinearResidual =
+    std::function<bool(std::size_t i, const double* x, double& r, double* gradient)>;
+
+struct NonlinearProblem {
+  std::size_t samples = 0;
+  int parameters = 0;
+  NonlinearResidual residual;
+  /// Typical magnitude of each parameter; Ceres works on x/scale so that all are O(1).
+  std::vector<double> scales;
+  std::vector<double> lower;  ///< bounds, −inf/+inf for none (empty: unbounded)
+  std::vector<double> upper;
+};
+
+/// Robust nonlinear least squares with Ceres from the initial guess x0.
+[[nodiscard]] LeastSquaresFit fitNonlinear(const NonlinearProblem& problem,
+                                           const Eigen::VectorXd& x0,
+                                           const RobustOptions& robust = {});
+
+/// Robust standard deviation 1.4826·median(|v − median(v)|) (normal-consistent MAD).
+[[nodiscard]] double robustSigma(std::vector<double> v);
+
+}  // namespace geaware::ident

@@ -1,0 +1,109 @@
+#pragma once
+// The logs identification reads (formats in docs/identification.md, "Log formats"): the
+// quadrotor force/torque platform, the single-rotor stand, and flight logs. Each reader keeps
+// only the columns it needs, as vectors of doubles, read in one pass (ident/csv_log.hpp);
+// column names are configurable, with the rigs' names as defaults, and every column's values
+// are checked against a plausible range for its unit.
+
+#include <array>
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace geaware::ident {
+
+// ------------------------------------------------------------------------ quadrotor platform
+
+/// Column names of a quadrotor platform log. Forces and torques are in the body frame, about
+/// the vehicle's centre; the vehicle is level and the board below it is tilted by tilt_deg
+/// about the body y axis; rotors are numbered as model::Mixer (1 front-right, 2 rear-left,
+/// 3 front-left, 4 rear-right).
+struct PlatformColumns {
+  std::string t = "t_s";
+  std::string h = "h_m";             ///< rotor-plane height above the board [m]
+  std::string tilt = "tilt_deg";     ///< board tilt about body y [deg]
+  std::array<std::string, 4> n = {"n1_rpm", "n2_rpm", "n3_rpm", "n4_rpm"};
+  std::array<std::string, 3> f = {"fx_N", "fy_N", "fz_N"};
+  std::array<std::string, 3> tau = {"tx_Nm", "ty_Nm", "tz_Nm"};
+};
+
+struct PlatformLog {
+  std::string source;                 ///< file it was read from
+  std::size_t first_data_line = 0;    ///< line of sample 0
+  std::vector<double> t_s;
+  std::vector<double> h_m;
+  std::vector<double> tilt_deg;
+  std::array<std::vector<double>, 4> n_rpm;
+  std::array<std::vector<double>, 3> f_N;     ///< body-frame force [N]
+  std::array<std::vector<double>, 3> tau_Nm;  ///< body-frame torque [N·m]
+
+  [[nodiscard]] std::size_t size() const noexcept { return t_s.size(); }
+};
+
+[[nodiscard]] PlatformLog readPlatformLog(const std::filesystem::path& file,
+                                          const PlatformColumns& columns = {});
+
+// ------------------------------------------------------------------------ single-rotor stand
+
+struct RotorStandColumns {
+  std::string t = "t_s";
+  std::string throttle = "throttle";   ///< ESC command in [0, 1]
+  std::string rpm = "rpm";
+  std::string thrust = "thrust_N";
+  std::string torque = "torque_Nm";    ///< reaction torque about the rotor axis [N·m]
+};
+
+struct RotorStandLog {
+  std::string source;
+  std::size_t first_data_line = 0;
+  std::vector<double> t_s;
+  std::vector<double> throttle;
+  std::vector<double> rpm;
+  std::vector<double> thrust_N;
+  std::vector<double> torque_Nm;
+
+  [[nodiscard]] std::size_t size() const noexcept { return t_s.size(); }
+};
+
+[[nodiscard]] RotorStandLog readRotorStandLog(const std::filesystem::path& file,
+                                              const RotorStandColumns& columns = {});
+
+// ----------------------------------------------------------------------------- flight logs
+
+/// Column names of a flight log. Velocity and the external acceleration are in the world
+/// frame (z up); the attitude is the Hamilton quaternion of R_WB. The external acceleration is
+/// the paper's disturbance observer (eq. 3): ã_ext = (a − g)_f^imu − z_B·T_f/m, i.e. the
+/// force not explained by gravity and the rotor thrust k_T·Σn², per unit mass.
+struct FlightColumns {
+  std::string t = "t_s";
+  std::string h = "h_m";
+  std::array<std::string, 3> v = {"vx_mps", "vy_mps", "vz_mps"};
+  std::array<std::string, 4> q = {"qw", "qx", "qy", "qz"};
+  std::array<std::string, 3> a_ext = {"ax_ext_mps2", "ay_ext_mps2", "az_ext_mps2"};
+  std::array<std::string, 4> n = {"n1_rpm", "n2_rpm", "n3_rpm", "n4_rpm"};
+};
+
+struct FlightLog {
+  std::string source;
+  std::size_t first_data_line = 0;
+  std::vector<double> t_s;
+  std::vector<double> h_m;
+  std::array<std::vector<double>, 3> v_W;        ///< empty in a hover log [m/s]
+  std::array<std::vector<double>, 4> q_WB;       ///< w, x, y, z; empty in a hover log
+  std::array<std::vector<double>, 3> a_ext_W;    ///< x, y empty in a hover log [m/s²]
+  std::array<std::vector<double>, 4> n_rpm;
+
+  [[nodiscard]] std::size_t size() const noexcept { return t_s.size(); }
+};
+
+/// A full flight log (for the drag table): every column of FlightColumns.
+[[nodiscard]] FlightLog readFlightLog(const std::filesystem::path& file,
+                                      const FlightColumns& columns = {});
+
+/// A hover-descent log (for F_G in flight, paper eq. 10): only t, h, the world-z external
+/// acceleration and the rotor speeds are read.
+[[nodiscard]] FlightLog readHoverLog(const std::filesystem::path& file,
+                                     const FlightColumns& columns = {});
+
+}  // namespace geaware::ident

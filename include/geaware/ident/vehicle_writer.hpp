@@ -1,0 +1,93 @@
+#pragma once
+// Writing identified parameters into a vehicle file (docs/vehicle-file.md): the fitted values
+// are MERGED into a given base file, every other key stays as it was.
+//
+// The merge works on the text, line by line: each fitted key's value (a plain scalar, or a
+// flow list `[a, b, c]` for the drag table) is replaced where yaml-cpp says it is, and that
+// line's trailing comment becomes "# identified …", so the rest of the file, comments
+// included, is kept byte for byte. Comment lines elsewhere that describe an old value (such
+// as the notes above `k_T_N_per_rpm2` in paper_quad.yaml) are kept too and may then be stale.
+// When a key cannot be replaced in place (block-style lists, anchors, a key missing from the
+// base), the whole file is re-emitted by yaml-cpp instead: all keys and values are kept, the
+// comments are lost, and MergeResult::comments_preserved says so.
+//
+// The result is always checked: it must load with io::parseVehicleYaml (strict keys and the
+// physical validation) and read back the merged values, or nothing is written.
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "geaware/ident/flight_fit.hpp"
+#include "geaware/ident/leveling_fit.hpp"
+#include "geaware/ident/least_squares.hpp"
+#include "geaware/ident/platform_fit.hpp"
+#include "geaware/ident/rotor_fit.hpp"
+
+namespace geaware::ident {
+
+/// The values to merge, by key path of the vehicle file ("rotor.k_T_N_per_rpm2").
+class VehicleUpdate {
+ public:
+  struct Entry {
+    std::string key;
+    std::vector<double> values;   ///< one value for a scalar key
+    bool list = false;            ///< the drag table's lists
+    double std_error = kNaN;      ///< written in the line's comment when known
+  };
+
+  /// Sets a scalar key; throws std::invalid_argument for a key identification does not fit
+  /// or a non-finite value. Setting a key again replaces the earlier value.
+  void set(const std::string& key, double value, double std_error = kNaN);
+  void set(const std::string& key, const Estimate& e) { set(key, e.value, e.std_error); }
+  /// Sets one of the drag table's lists.
+  void setList(const std::string& key, std::vector<double> values);
+
+  /// Text for the comments of the replaced lines, e.g. the log file ("identified from …").
+  std::string provenance;
+
+  [[nodiscard]] const std::vector<Entry>& entries() const noexcept { return entries_; }
+  [[nodiscard]] bool empty() const noexcept { return entries_.empty(); }
+
+  /// The keys identification may write.
+  [[nodiscard]] static const std::vector<std::string>& fittedKeys();
+
+ private:
+  std::vector<Entry> entries_;
+};
+
+/// k_T, k_I, J_R (when fitted) and the throttle curve.
+void addRotorFit(VehicleUpdate& update, const RotorFit& fit);
+/// g1, g2 and, with include_k_T, the k_T fitted with them.
+void addAdditionalThrust(VehicleUpdate& update, const AdditionalThrustFit& fit,
+                         bool include_k_T = true);
+/// k_TX, k_TY, k_I where fitted.
+void addMixing(VehicleUpdate& update, const MixingFit& fit);
+/// g3, g4, scale (the scale belongs to the k_T the fit used: merge that k_T with it).
+void addLeveling(VehicleUpdate& update, const LevelingFit& fit);
+void addHoverThrust(VehicleUpdate& update, const HoverThrustFit& fit);
+void addDrag(VehicleUpdate& update, const DragFit& fit);
+
+struct MergeResult {
+  std::string yaml;                ///< the merged file's text
+  bool comments_preserved = true;  ///< false when the file had to be re-emitted
+  std::vector<std::string> notes;  ///< why it was re-emitted, etc.
+};
+
+/// Merges into the text of a base vehicle file (`base_name` names it in errors). Throws
+/// io::ConfigError when the base or the result is not a valid vehicle file.
+[[nodiscard]] MergeResult mergeVehicleYaml(std::string_view base_text, const std::string& base_name,
+                                           const VehicleUpdate& update);
+
+/// Reads `base`, merges, checks and writes `out` (through a temporary file and a rename, so a
+/// failure leaves `out` untouched). `out` may be the base file itself only because the caller
+/// names it: nothing is ever written anywhere else.
+MergeResult writeVehicleFile(const std::filesystem::path& base, const std::filesystem::path& out,
+                             const VehicleUpdate& update);
+
+/// The same from the text of a base file (e.g. io::builtinVehicleYaml()).
+MergeResult writeVehicleFile(std::string_view base_text, const std::string& base_name,
+                             const std::filesystem::path& out, const VehicleUpdate& update);
+
+}  // namespace geaware::ident

@@ -1,0 +1,365 @@
+#include "geaware/ident/csv_log.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <optional>
+#include <sstream>
+
+namespace geaware::ident {
+
+namespace {
+
+std::string formatWhat(const std::string& file, std::size_t line, const std::string& column,
+                       const std::string& message) {
+  std::string s = file;
+  if (line > 0) s += ":" + std::to_string(line);
+  s += ": ";
+  if (!column.empty()) s += "column '" + column + "': ";
+  return s + message;
+}
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  return s;
+}
+
+std::string number(double v) {
+  std::ostringstream os;
+  os.precision(10);
+  os << v;
+  return os.str();
+}
+
+// Levenshtein distance, case-insensitive, for "did you mean" hints on misnamed columns.
+std::size_t editDistance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      const bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
+                        std::tolower(static_cast<unsigned char>(b[j - 1]));
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (same ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+}  // namespace
+
+CsvError::CsvError(std::string file, std::size_t line, std::string column,
+                   const std::string& message)
+    : std::runtime_error(formatWhat(file, line, column, message)),
+      file_(std::move(file)),
+      line_(line),
+      column_(std::move(column)) {}
+
+const std::vector<double>& CsvTable::column(std::string_view name) const {
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (names[i] == name) return columns[i];
+  }
+  throw std::out_of_range("CsvTable: column '" + std::string(name) + "' was not read from " +
+                          source);
+}
+
+struct CsvReader::Impl {
+  std::string source;
+  CsvReadOptions options;
+  std::FILE* file = nullptr;
+
+  // Read buffer: bytes [begin, end) are read but not yet consumed.
+  std::vector<char> buffer;
+  std::size_t begin = 0;
+  std::size_t end = 0;
+  bool eof = false;
+
+  std::vector<std::string> header;
+  std::vector<int> slot_of_cell;  // header cell → index in the requested columns, −1: skipped
+  int time_slot = -1;
+  std::size_t line_no = 0;        // physical line of the last line taken from the buffer
+  std::size_t consumed = 0;       // bytes of the lines taken so far
+  std::size_t row_line = 0;       // line of the last data row returned
+  std::size_t rows = 0;
+  std::size_t blank_line = 0;     // first empty line after the data (0: none yet)
+  bool finished = false;
+  double last_time = 0.0;
+  std::size_t last_time_line = 0;
+
+  ~Impl() {
+    if (file != nullptr) std::fclose(file);
+  }
+
+  [[noreturn]] void fail(std::size_t line, const std::string& column, const std::string& msg) const {
+    throw CsvError(source, line, column, msg);
+  }
+
+  // The next physical line without its terminator, or nullopt at the end of the file. The view
+  // stays valid until the next call.
+  std::optional<std::string_view> nextLine() {
+    for (;;) {
+      if (begin < end) {
+        const char* start = buffer.data() + begin;
+        const void* nl = std::memchr(start, '\n', end - begin);
+        if (nl != nullptr) {
+          const auto len = static_cast<std::size_t>(static_cast<const char*>(nl) - start);
+          begin += len + 1;
+          consumed += len + 1;
+          ++line_no;
+          return std::string_view(start, len);
+        }
+        if (eof) {  // last line without a terminator
+          const std::string_view rest(start, end - begin);
+          begin = end;
+          consumed += rest.size();
+          ++line_no;
+          return rest;
+        }
+      } else if (eof) {
+        return std::nullopt;
+      }
+      // Refill: move the partial line to the front, grow the buffer if it is all one line.
+      if (begin > 0) {
+        std::memmove(buffer.data(), buffer.data() + begin, end - begin);
+        end -= begin;
+        begin = 0;
+      }
+      if (end == buffer.size()) buffer.resize(buffer.size() * 2);
+      const std::size_t got = std::fread(buffer.data() + end, 1, buffer.size() - end, file);
+      if (got == 0) {
+        if (std::ferror(file) != 0) fail(line_no + 1, "", "read error");
+        eof = true;
+      }
+      end += got;
+    }
+  }
+
+  void readHeader() {
+    for (;;) {
+      const auto line = nextLine();
+      if (!line) fail(line_no, "", "no header line (the file is empty)");
+      std::string_view text = trim(*line);
+      if (line_no == 1 && text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);  // BOM
+      if (text.empty() || text.front() == '#') continue;
+      // Split the header into names.
+      std::size_t pos = 0;
+      for (;;) {
+        const std::size_t q = text.find(options.delimiter, pos);
+        std::string_view name = trim(text.substr(pos, q == std::string_view::npos ? q : q - pos));
+        if (name.size() >= 2 && name.front() == '"' && name.back() == '"') {
+          name = name.substr(1, name.size() - 2);
+        }
+        header.emplace_back(name);
+        if (q == std::string_view::npos) break;
+        pos = q + 1;
+      }
+      break;
+    }
+    const std::size_t header_line = line_no;
+    for (std::size_t i = 0; i < header.size(); ++i) {
+      for (std::size_t j = 0; j < i; ++j) {
+        if (header[i] == header[j] && !header[i].empty()) {
+          fail(header_line, header[i], "appears twice in the header (cells " +
+                                           std::to_string(j + 1) + " and " +
+                                           std::to_string(i + 1) + ")");
+        }
+      }
+    }
+    slot_of_cell.assign(header.size(), -1);
+    std::vector<std::string> missing;
+    for (std::size_t k = 0; k < options.columns.size(); ++k) {
+      const auto it = std::find(header.begin(), header.end(), options.columns[k].name);
+      if (it == header.end()) {
+        missing.push_back(options.columns[k].name);
+      } else {
+        slot_of_cell[static_cast<std::size_t>(it - header.begin())] = static_cast<int>(k);
+      }
+      if (options.columns[k].name == options.time_column) time_slot = static_cast<int>(k);
+    }
+    if (!missing.empty()) {
+      std::string msg = missing.size() == 1 ? "missing column" : "missing columns";
+      for (std::size_t i = 0; i < missing.size(); ++i) {
+        msg += (i == 0 ? " '" : ", '") + missing[i] + "'";
+        // A near miss in the header (differing in case or in about one character in four)
+        // that no other requested column claims is most likely the misnamed column.
+        std::string best;
+        std::size_t best_d = std::min<std::size_t>(2, missing[i].size() / 4) + 1;
+        for (std::size_t c = 0; c < header.size(); ++c) {
+          if (slot_of_cell[c] >= 0) continue;
+          const std::string& h = header[c];
+          const std::size_t d = editDistance(missing[i], h);
+          if (d < best_d) {
+            best_d = d;
+            best = h;
+          }
+        }
+        if (!best.empty()) msg += " (did you mean '" + best + "'?)";
+      }
+      msg += "; found:";
+      for (std::size_t i = 0; i < header.size(); ++i) msg += (i == 0 ? " " : ", ") + header[i];
+      fail(header_line, missing.front(), msg);
+    }
+    if (!options.time_column.empty() && time_slot < 0) {
+      throw std::invalid_argument("CsvReadOptions: time column '" + options.time_column +
+                                  "' is not one of the requested columns");
+    }
+  }
+
+  double parseCell(std::string_view cell, std::size_t k) const {
+    const CsvColumn& col = options.columns[k];
+    cell = trim(cell);
+    if (cell.empty()) fail(line_no, col.name, "empty cell, expected a number");
+    const char* first = cell.data();
+    const char* last = cell.data() + cell.size();
+    if (*first == '+') ++first;
+    double v = 0.0;
+    const auto [ptr, ec] = std::from_chars(first, last, v);
+    if (ec == std::errc::result_out_of_range) {
+      fail(line_no, col.name, "'" + std::string(cell) + "' is out of the range of a double");
+    }
+    if (ec != std::errc() || ptr != last) {
+      fail(line_no, col.name, "expected a number, got '" + std::string(cell) + "'");
+    }
+    if (!std::isfinite(v)) fail(line_no, col.name, "'" + std::string(cell) + "' is not finite");
+    if (v < col.min || v > col.max) {
+      fail(line_no, col.name, "value " + std::string(cell) + " is outside the plausible range [" +
+                                  number(col.min) + ", " + number(col.max) +
+                                  "] for this column (wrong unit?)");
+    }
+    return v;
+  }
+
+  bool next(std::span<double> values) {
+    if (finished) return false;
+    if (values.size() != options.columns.size()) {
+      throw std::invalid_argument("CsvReader::next: expected " +
+                                  std::to_string(options.columns.size()) + " values");
+    }
+    for (;;) {
+      const auto line = nextLine();
+      if (!line) {
+        finished = true;
+        if (rows < options.min_rows) {
+          fail(line_no, "", "only " + std::to_string(rows) + " data rows, at least " +
+                                std::to_string(options.min_rows) + " are needed");
+        }
+        return false;
+      }
+      std::string_view text = *line;
+      if (!text.empty() && text.back() == '\r') text.remove_suffix(1);
+      if (trim(text).empty()) {
+        if (blank_line == 0) blank_line = line_no;
+        continue;
+      }
+      if (blank_line != 0) {
+        fail(blank_line, "", "empty line inside the data (rows follow on line " +
+                                 std::to_string(line_no) + ")");
+      }
+      // Split and parse only the requested cells.
+      const char* p = text.data();
+      const char* const stop = text.data() + text.size();
+      std::size_t cell = 0;
+      for (;;) {
+        const char* q = static_cast<const char*>(
+            std::memchr(p, options.delimiter, static_cast<std::size_t>(stop - p)));
+        const char* cell_end = q == nullptr ? stop : q;
+        if (cell >= slot_of_cell.size()) {
+          fail(line_no, "", "row has more cells than the header's " +
+                                std::to_string(header.size()));
+        }
+        const int slot = slot_of_cell[cell];
+        if (slot >= 0) {
+          values[static_cast<std::size_t>(slot)] =
+              parseCell(std::string_view(p, static_cast<std::size_t>(cell_end - p)),
+                        static_cast<std::size_t>(slot));
+        }
+        ++cell;
+        if (q == nullptr) break;
+        p = q + 1;
+      }
+      if (cell != header.size()) {
+        fail(line_no, header[cell], "row has " + std::to_string(cell) + " cells, the header " +
+                                        std::to_string(header.size()) + " (this column is missing)");
+      }
+      if (time_slot >= 0) {
+        const double t = values[static_cast<std::size_t>(time_slot)];
+        if (rows > 0 && !(t > last_time)) {
+          const std::string& name = options.columns[static_cast<std::size_t>(time_slot)].name;
+          if (t == last_time) {
+            fail(line_no, name, "duplicated timestamp " + number(t) + " (also on line " +
+                                    std::to_string(last_time_line) + ")");
+          }
+          fail(line_no, name, "timestamp " + number(t) + " is earlier than " + number(last_time) +
+                                  " on line " + std::to_string(last_time_line) +
+                                  " (timestamps must increase)");
+        }
+        last_time = t;
+        last_time_line = line_no;
+      }
+      ++rows;
+      row_line = line_no;
+      return true;
+    }
+  }
+};
+
+CsvReader::CsvReader(const std::filesystem::path& file, CsvReadOptions options)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->source = file.string();
+  impl_->options = std::move(options);
+  impl_->file = std::fopen(file.c_str(), "rb");
+  if (impl_->file == nullptr) {
+    throw CsvError(impl_->source, 0, "", std::string("cannot open: ") + std::strerror(errno));
+  }
+  impl_->buffer.resize(std::max<std::size_t>(impl_->options.buffer_bytes, 64));
+  impl_->readHeader();
+}
+
+CsvReader::~CsvReader() = default;
+CsvReader::CsvReader(CsvReader&&) noexcept = default;
+CsvReader& CsvReader::operator=(CsvReader&&) noexcept = default;
+
+bool CsvReader::next(std::span<double> values) { return impl_->next(values); }
+std::size_t CsvReader::columnCount() const noexcept { return impl_->options.columns.size(); }
+std::size_t CsvReader::rowsRead() const noexcept { return impl_->rows; }
+std::size_t CsvReader::line() const noexcept { return impl_->row_line; }
+std::size_t CsvReader::bytesRead() const noexcept { return impl_->consumed; }
+const std::string& CsvReader::source() const noexcept { return impl_->source; }
+const std::vector<std::string>& CsvReader::header() const noexcept { return impl_->header; }
+
+CsvTable readCsv(const std::filesystem::path& file, const CsvReadOptions& options) {
+  CsvReader reader(file, options);
+  CsvTable table;
+  table.source = reader.source();
+  for (const auto& c : options.columns) table.names.push_back(c.name);
+  table.columns.resize(options.columns.size());
+  // Reserve from the file size once the first rows show the bytes per row: avoids regrowth
+  // (and the transient doubling of memory it costs) for large logs.
+  std::error_code ec;
+  const auto file_bytes = std::filesystem::file_size(file, ec);
+  constexpr std::size_t kProbeRows = 4096;
+  std::vector<double> row(options.columns.size());
+  std::size_t data_start = 0;
+  while (reader.next(row)) {
+    if (table.columns.front().empty()) {
+      table.first_data_line = reader.line();
+      data_start = reader.bytesRead();
+    }
+    if (table.columns.front().size() == kProbeRows && !ec && reader.bytesRead() > data_start) {
+      const double per_row = static_cast<double>(reader.bytesRead() - data_start) / (kProbeRows - 1);
+      const auto guess = static_cast<std::size_t>(1.02 * static_cast<double>(file_bytes) / per_row) + 16;
+      for (auto& c : table.columns) c.reserve(guess);
+    }
+    for (std::size_t k = 0; k < row.size(); ++k) table.columns[k].push_back(row[k]);
+  }
+  return table;
+}
+
+}  // namespace geaware::ident

@@ -1,0 +1,69 @@
+#pragma once
+// Helpers shared by the fits of ident/ (private to the layer).
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <utility>
+#include <string>
+#include <vector>
+
+#include "geaware/ident/least_squares.hpp"
+
+namespace geaware::ident::detail {
+
+/// A value printed with 4 significant digits, for messages.
+inline std::string num(double v) {
+  std::ostringstream os;
+  os.precision(4);
+  os << v;
+  return os.str();
+}
+
+/// Adds a warning when a parameter's standard error exceeds `max_relative` of its value: the
+/// data do not constrain it (too little excitation or too narrow a height range).
+inline void warnIfImprecise(std::vector<std::string>& warnings, const std::string& name,
+                            const Estimate& e, const std::string& hint,
+                            double max_relative = 0.25) {
+  if (!(std::abs(e.std_error) <= max_relative * std::abs(e.value))) {
+    warnings.push_back(name + " = " + num(e.value) + " ± " + num(e.std_error) +
+                       " is poorly constrained by the data" + (hint.empty() ? "" : " (" + hint + ")"));
+  }
+}
+
+/// Adds a warning when the fit dropped more than `max_fraction` of its samples as outliers.
+inline void warnIfManyOutliers(std::vector<std::string>& warnings, const std::string& what,
+                               const FitStats& s, double max_fraction = 0.1) {
+  const double total = static_cast<double>(s.count + s.outliers);
+  if (total > 0.0 && static_cast<double>(s.outliers) > max_fraction * total) {
+    warnings.push_back(what + ": " + std::to_string(s.outliers) + " of " +
+                       std::to_string(s.count + s.outliers) +
+                       " samples were dropped as outliers (model mismatch or bad data?)");
+  }
+}
+
+/// The fit, or an IdentError naming the log and what was being fitted.
+inline const LeastSquaresFit& require(const LeastSquaresFit& fit, const std::string& source,
+                                      const std::string& what) {
+  if (!fit.ok) throw IdentError(source + ": cannot fit " + what + ": " + fit.message);
+  return fit;
+}
+
+/// Splits heights sorted ascending into `bands` ranges [first, last) of about equal count; equal
+/// heights never straddle two ranges (a platform logs many samples at each height).
+inline std::vector<std::pair<std::size_t, std::size_t>> bandRanges(
+    const std::vector<double>& sorted_h, int bands) {
+  std::vector<std::pair<std::size_t, std::size_t>> out;
+  const std::size_t n = sorted_h.size();
+  const auto count = static_cast<std::size_t>(std::max(1, bands));
+  std::size_t first = 0;
+  for (std::size_t b = 0; b < count && first < n; ++b) {
+    std::size_t last = b + 1 == count ? n : std::max((b + 1) * n / count, first + 1);
+    while (last < n && sorted_h[last] == sorted_h[last - 1]) ++last;
+    out.emplace_back(first, last);
+    first = last;
+  }
+  return out;
+}
+
+}  // namespace geaware::ident::detail

@@ -1,0 +1,163 @@
+#include "geaware/ident/leveling_fit.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "fit_support.hpp"
+#include "geaware/model/units.hpp"
+
+namespace geaware::ident {
+
+using detail::num;
+
+namespace {
+
+/// The denominator h² + g3·h + g4 stays positive for every h ≥ 0 (docs/vehicle-file.md).
+bool validShape(double g3, double g4) { return g4 > 0.0 && (g3 >= 0.0 || g3 * g3 < 4.0 * g4); }
+
+}  // namespace
+
+double levelingCoefficient(double g3, double g4, double scale, double h) {
+  const double d = h * h + g3 * h + g4;
+  return scale * h / (d * d);
+}
+
+double levelingCoefficientStdError(const LevelingFit& fit, double h) {
+  const double g3 = fit.g3_m.value;
+  const double g4 = fit.g4_m2.value;
+  const double s = fit.scale_m4.value;
+  const double d = h * h + g3 * h + g4;
+  const double d3 = d * d * d;
+  const Eigen::Vector3d grad(-2.0 * s * h * h / d3, -2.0 * s * h / d3, h / (d * d));
+  return std::sqrt(grad.dot(fit.covariance * grad));
+}
+
+LevelingFit fitLeveling(const PlatformLog& log, const LevelingInputs& in,
+                        const LevelingFitOptions& options) {
+  LevelingFit out;
+  if (!(in.k_T_N_per_rpm2 > 0.0) || !(in.k_TY_N_per_rpm2 > 0.0) ||
+      !(in.diagonal_rotor_distance_m > 0.0)) {
+    throw std::invalid_argument("fitLeveling: k_T, k_TY and b must be positive");
+  }
+  const double arm = std::sqrt(2.0) * in.diagonal_rotor_distance_m / 4.0;
+  // Per tilted sample: h, u = s·T·sin δ and the leveling torque τ_G,y = τ_y − τ_B,y.
+  std::vector<double> h;
+  std::vector<double> u;
+  std::vector<double> y;
+  out.h_min_m = out.tilt_min_deg = std::numeric_limits<double>::infinity();
+  out.h_max_m = out.tilt_max_deg = -std::numeric_limits<double>::infinity();
+  std::size_t beyond = 0;
+  for (std::size_t i = 0; i < log.size(); ++i) {
+    const double tilt = std::abs(log.tilt_deg[i]);
+    if (tilt <= options.level_tilt_deg) continue;
+    if (tilt > options.max_tilt_deg) {
+      ++beyond;
+      continue;
+    }
+    double S = 0.0;
+    std::array<double, 4> n2{};
+    for (std::size_t k = 0; k < 4; ++k) {
+      n2[k] = log.n_rpm[k][i] * log.n_rpm[k][i];
+      S += n2[k];
+    }
+    const double tau_B = arm * in.k_TY_N_per_rpm2 * (-n2[0] + n2[1] - n2[2] + n2[3]);
+    h.push_back(log.h_m[i]);
+    u.push_back(options.torque_sign * in.k_T_N_per_rpm2 * S *
+                std::sin(log.tilt_deg[i] * model::kDegToRad));
+    y.push_back(log.tau_Nm[1][i] - tau_B);
+    out.h_min_m = std::min(out.h_min_m, log.h_m[i]);
+    out.h_max_m = std::max(out.h_max_m, log.h_m[i]);
+    out.tilt_min_deg = std::min(out.tilt_min_deg, tilt);
+    out.tilt_max_deg = std::max(out.tilt_max_deg, tilt);
+  }
+  if (h.size() < 10) {
+    throw IdentError(log.source + ": cannot fit the leveling torque: only " +
+                     std::to_string(h.size()) + " samples with a tilted board (" +
+                     num(options.level_tilt_deg) + "° < |tilt| ≤ " + num(options.max_tilt_deg) +
+                     "°; " + std::to_string(beyond) + " more beyond the tilt limit)");
+  }
+
+  // Initial guess by variable projection: for a fixed shape (g3, g4) the scale is linear;
+  // scan the valid shapes on a grid (on at most ~20,000 samples) and keep the best.
+  const std::size_t stride = std::max<std::size_t>(1, h.size() / 20000);
+  double best_sse = std::numeric_limits<double>::infinity();
+  Eigen::Vector3d x0(0.0, 0.0, 0.0);
+  bool any_positive = false;
+  for (int a = 0; a <= 40; ++a) {
+    const double g3 = -1.0 + 0.05 * a;
+    for (int c = 0; c <= 36; ++c) {
+      const double g4 = 1e-3 * std::pow(10.0, c / 12.0);  // 1e-3 … 1 m²
+      if (!validShape(g3, g4)) continue;
+      double sxx = 0.0;
+      double sxy = 0.0;
+      double syy = 0.0;
+      for (std::size_t j = 0; j < h.size(); j += stride) {
+        const double x = levelingCoefficient(g3, g4, 1.0, h[j]) * u[j];
+        sxx += x * x;
+        sxy += x * y[j];
+        syy += y[j] * y[j];
+      }
+      if (!(sxx > 0.0)) continue;
+      const double scale = sxy / sxx;
+      if (!(scale > 0.0)) continue;
+      any_positive = true;
+      const double sse = syy - scale * sxy;
+      if (sse < best_sse) {
+        best_sse = sse;
+        x0 = Eigen::Vector3d(g3, g4, scale);
+      }
+    }
+  }
+  if (!any_positive) {
+    throw IdentError(log.source + ": cannot fit the leveling torque: the measured y torque has "
+                     "the wrong sign for a leveling torque with torque_sign = " +
+                     num(options.torque_sign) + " (check the tilt or torque sign convention)");
+  }
+
+  NonlinearProblem problem;
+  problem.samples = h.size();
+  problem.parameters = 3;
+  problem.residual = [&](std::size_t j, const double* x, double& r, double* g) {
+    if (!validShape(x[0], x[1])) return false;
+    const double d = h[j] * h[j] + x[0] * h[j] + x[1];
+    const double m = h[j] / (d * d);
+    r = y[j] - x[2] * m * u[j];
+    if (g != nullptr) {
+      g[0] = 2.0 * x[2] * m * u[j] * h[j] / d;
+      g[1] = 2.0 * x[2] * m * u[j] / d;
+      g[2] = -m * u[j];
+    }
+    return true;
+  };
+  problem.scales = {std::max(std::abs(x0(0)), 0.05), std::max(x0(1), 1e-3), x0(2)};
+  problem.lower = {-100.0, 1e-9, 0.0};
+  problem.upper = {100.0, 100.0, 100.0};
+  const auto fit = fitNonlinear(problem, x0, options.robust);
+  detail::require(fit, log.source, "the leveling torque M_G(h) = scale·h/(h² + g3·h + g4)²");
+  out.g3_m = fit.estimate(0);
+  out.g4_m2 = fit.estimate(1);
+  out.scale_m4 = fit.estimate(2);
+  out.covariance = fit.covariance;
+  out.stats = fit.stats;
+  const double g3 = out.g3_m.value;
+  out.peak_height_m = (-g3 + std::sqrt(g3 * g3 + 12.0 * out.g4_m2.value)) / 6.0;
+  const std::string hint = "heights " + num(out.h_min_m) + "–" + num(out.h_max_m) +
+                           " m; log heights on both sides of the torque's peak";
+  detail::warnIfImprecise(out.warnings, "g3", out.g3_m, hint);
+  detail::warnIfImprecise(out.warnings, "g4", out.g4_m2, hint);
+  detail::warnIfImprecise(out.warnings, "scale", out.scale_m4, hint);
+  detail::warnIfManyOutliers(out.warnings, "leveling fit", out.stats);
+  if (!(out.peak_height_m > out.h_min_m && out.peak_height_m < out.h_max_m)) {
+    out.warnings.push_back("the fitted peak of M_G (" + num(out.peak_height_m) +
+                           " m) lies outside the logged heights (" + num(out.h_min_m) + "–" +
+                           num(out.h_max_m) + " m): the shape is extrapolated");
+  }
+  if (beyond > 0) {
+    out.warnings.push_back(std::to_string(beyond) + " samples with |tilt| > " +
+                           num(options.max_tilt_deg) + "° were left out (the torque saturates)");
+  }
+  return out;
+}
+
+}  // namespace geaware::ident

@@ -1,0 +1,243 @@
+#include "geaware/ident/platform_fit.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+
+#include "fit_support.hpp"
+
+namespace geaware::ident {
+
+using detail::num;
+
+namespace {
+
+double sumSquares(const PlatformLog& log, std::size_t i) {
+  double s = 0.0;
+  for (const auto& n : log.n_rpm) s += n[i] * n[i];
+  return s;
+}
+
+/// A·N² rows 2–4 of the mixer (eq. 2): roll, pitch and yaw combinations of the squared speeds.
+std::array<double, 3> mixingCombinations(const PlatformLog& log, std::size_t i) {
+  const double n1 = log.n_rpm[0][i] * log.n_rpm[0][i];
+  const double n2 = log.n_rpm[1][i] * log.n_rpm[1][i];
+  const double n3 = log.n_rpm[2][i] * log.n_rpm[2][i];
+  const double n4 = log.n_rpm[3][i] * log.n_rpm[3][i];
+  return {-n1 + n2 + n3 - n4, -n1 + n2 - n3 + n4, -n1 - n2 + n3 + n4};
+}
+
+std::vector<std::size_t> levelSamples(const PlatformLog& log, double level_tilt_deg) {
+  std::vector<std::size_t> idx;
+  idx.reserve(log.size());
+  for (std::size_t i = 0; i < log.size(); ++i) {
+    if (std::abs(log.tilt_deg[i]) <= level_tilt_deg) idx.push_back(i);
+  }
+  return idx;
+}
+
+}  // namespace
+
+std::vector<double> measuredAdditionalThrust(const PlatformLog& log, double k_T) {
+  std::vector<double> out(log.size());
+  for (std::size_t i = 0; i < log.size(); ++i) {
+    const double T = k_T * sumSquares(log, i);
+    out[i] = T > 0.0 ? log.f_N[2][i] / T - 1.0 : kNaN;
+  }
+  return out;
+}
+
+double additionalThrustStdError(const AdditionalThrustFit& fit, double h) {
+  const double g1 = fit.g1_m2.value;
+  const double g2 = fit.g2_m2.value;
+  const double d = h * h + g1;
+  const Eigen::Vector3d grad(0.0, -g2 / (d * d), 1.0 / d);  // ∂F_G/∂(k_T, g1, g2)
+  return std::sqrt(grad.dot(fit.covariance * grad));
+}
+
+AdditionalThrustFit fitAdditionalThrust(const PlatformLog& log, const PlatformFitOptions& options) {
+  AdditionalThrustFit out;
+  const std::vector<std::size_t> idx = levelSamples(log, options.level_tilt_deg);
+  if (idx.size() < 10) {
+    throw IdentError(log.source + ": cannot fit F_G: only " + std::to_string(idx.size()) +
+                     " samples with a level board (|tilt| ≤ " + num(options.level_tilt_deg) +
+                     "°), at least 10 are needed");
+  }
+  // Pre-computed per sample: Σn², h², f_z.
+  std::vector<double> S(idx.size());
+  std::vector<double> h2(idx.size());
+  std::vector<double> fz(idx.size());
+  out.h_min_m = std::numeric_limits<double>::infinity();
+  out.h_max_m = -std::numeric_limits<double>::infinity();
+  for (std::size_t j = 0; j < idx.size(); ++j) {
+    const std::size_t i = idx[j];
+    S[j] = sumSquares(log, i);
+    h2[j] = log.h_m[i] * log.h_m[i];
+    fz[j] = log.f_N[2][i];
+    out.h_min_m = std::min(out.h_min_m, log.h_m[i]);
+    out.h_max_m = std::max(out.h_max_m, log.h_m[i]);
+  }
+
+  // Initial guess by variable projection: for a fixed g1 the model is linear in k_T and
+  // k_T·g2, so scan g1 on a log grid (on at most ~20,000 samples) and keep the best.
+  const std::size_t stride = std::max<std::size_t>(1, idx.size() / 20000);
+  double best_sse = std::numeric_limits<double>::infinity();
+  Eigen::Vector3d x0(0.0, 0.02, 0.0);
+  for (int k = 0; k <= 60; ++k) {
+    const double g1 = 1e-4 * std::pow(10.0, k / 12.0);  // 1e-4 … 10 m²
+    Eigen::Matrix2d A = Eigen::Matrix2d::Zero();
+    Eigen::Vector2d b = Eigen::Vector2d::Zero();
+    double yy = 0.0;
+    for (std::size_t j = 0; j < idx.size(); j += stride) {
+      const Eigen::Vector2d x(S[j], S[j] / (h2[j] + g1));
+      A += x * x.transpose();
+      b += x * fz[j];
+      yy += fz[j] * fz[j];
+    }
+    if (!(A.determinant() > 1e-12 * A(0, 0) * A(1, 1))) continue;
+    const Eigen::Vector2d beta = A.ldlt().solve(b);
+    const double sse = yy - beta.dot(b);
+    if (sse < best_sse && beta(0) > 0.0) {
+      best_sse = sse;
+      x0 = Eigen::Vector3d(beta(0), g1, std::max(beta(1) / beta(0), 1e-6));
+    }
+  }
+  if (!(x0(0) > 0.0)) {
+    throw IdentError(log.source + ": cannot fit F_G: the thrust does not grow with Σn² "
+                                  "(are the rotor speeds or the force columns right?)");
+  }
+
+  NonlinearProblem problem;
+  problem.samples = idx.size();
+  problem.parameters = 3;
+  problem.residual = [&](std::size_t j, const double* x, double& r, double* g) {
+    if (!(x[1] > 0.0)) return false;
+    const double d = h2[j] + x[1];
+    const double F = x[2] / d;
+    r = fz[j] - x[0] * S[j] * (1.0 + F);
+    if (g != nullptr) {
+      g[0] = -S[j] * (1.0 + F);
+      g[1] = x[0] * S[j] * x[2] / (d * d);
+      g[2] = -x[0] * S[j] / d;
+    }
+    return true;
+  };
+  problem.scales = {x0(0), std::max(x0(1), 1e-4), std::max(x0(2), 1e-4)};
+  problem.lower = {0.0, 1e-9, 0.0};
+  problem.upper = {std::numeric_limits<double>::infinity(), 100.0, 100.0};
+  const auto fit = fitNonlinear(problem, x0, options.robust);
+  detail::require(fit, log.source, "k_T, g1, g2 (F_G(h) = g2/(h² + g1) on the level board)");
+  out.k_T_N_per_rpm2 = fit.estimate(0);
+  out.g1_m2 = fit.estimate(1);
+  out.g2_m2 = fit.estimate(2);
+  out.covariance = fit.covariance;
+  out.stats = fit.stats;
+  const std::string range = "heights " + num(out.h_min_m) + "–" + num(out.h_max_m) +
+                            " m; log heights from the lowest flyable to well out of ground effect";
+  detail::warnIfImprecise(out.warnings, "g1", out.g1_m2, range);
+  detail::warnIfImprecise(out.warnings, "g2", out.g2_m2, range);
+  detail::warnIfManyOutliers(out.warnings, "F_G fit", out.stats);
+  return out;
+}
+
+MixingFit fitMixing(const PlatformLog& log, double b, const PlatformFitOptions& options) {
+  MixingFit out;
+  const double arm = std::sqrt(2.0) * b / 4.0;
+  const std::vector<std::size_t> idx = levelSamples(log, options.level_tilt_deg);
+  if (idx.size() < 10) {
+    throw IdentError(log.source + ": cannot fit the mixing coefficients: only " +
+                     std::to_string(idx.size()) + " samples with a level board");
+  }
+  // Regressors of the four coefficients per level sample: thrust Σn² (k_T), roll and pitch
+  // arm·(A·N²) (k_TX, k_TY), yaw A·N² (k_I); and the measured f_z, τ_x, τ_y, τ_z.
+  struct Row {
+    std::array<double, 4> x;
+    std::array<double, 4> y;
+  };
+  std::vector<Row> rows(idx.size());
+  for (std::size_t j = 0; j < idx.size(); ++j) {
+    const std::size_t i = idx[j];
+    const auto c = mixingCombinations(log, i);
+    rows[j] = {{sumSquares(log, i), arm * c[0], arm * c[1], c[2]},
+               {log.f_N[2][i], log.tau_Nm[0][i], log.tau_Nm[1][i], log.tau_Nm[2][i]}};
+  }
+  // One-coefficient fit of column `k` on the samples j in [first, last) of `order`.
+  auto fitOne = [&](int k, const std::vector<std::size_t>& order, std::size_t first,
+                    std::size_t last, FitStats* stats) -> std::optional<Estimate> {
+    const auto ls = fitLinear(
+        last - first, 1,
+        [&](std::size_t m, double* x, double& y, double& w) {
+          const Row& r = rows[order[first + m]];
+          x[0] = r.x[static_cast<std::size_t>(k)];
+          y = r.y[static_cast<std::size_t>(k)];
+          w = 1.0;
+          return true;
+        },
+        options.robust);
+    if (!ls.ok) return std::nullopt;
+    if (stats != nullptr) *stats = ls.stats;
+    return ls.estimate(0);
+  };
+
+  std::vector<std::size_t> all(rows.size());
+  for (std::size_t j = 0; j < all.size(); ++j) all[j] = j;
+  static constexpr std::array<const char*, 3> kName = {"k_TX", "k_TY", "k_I"};
+  static constexpr std::array<const char*, 3> kPattern = {
+      "roll: −n1²+n2²+n3²−n4²", "pitch: −n1²+n2²−n3²+n4²", "yaw: −n1²−n2²+n3²+n4²"};
+  std::array<std::optional<Estimate>*, 3> targets = {&out.k_TX_N_per_rpm2, &out.k_TY_N_per_rpm2,
+                                                     &out.k_I_Nm_per_rpm2};
+  std::array<FitStats*, 3> stats = {&out.roll, &out.pitch, &out.yaw};
+  for (int k = 0; k < 3; ++k) {
+    *targets[static_cast<std::size_t>(k)] = fitOne(k + 1, all, 0, all.size(), stats[static_cast<std::size_t>(k)]);
+    if (!*targets[static_cast<std::size_t>(k)]) {
+      out.warnings.push_back(std::string(kName[static_cast<std::size_t>(k)]) +
+                             " not fitted: the rotor speeds never differ in the " +
+                             kPattern[static_cast<std::size_t>(k)] +
+                             " pattern on the level board (run the mixing experiments)");
+    } else {
+      detail::warnIfImprecise(out.warnings, kName[static_cast<std::size_t>(k)],
+                              **targets[static_cast<std::size_t>(k)],
+                              "too little rotor-speed difference in the mixing experiments");
+      detail::warnIfManyOutliers(out.warnings, std::string(kName[static_cast<std::size_t>(k)]) + " fit",
+                                 *stats[static_cast<std::size_t>(k)]);
+    }
+  }
+
+  // Height bands of equal sample count; samples at one height never straddle two bands.
+  std::vector<std::size_t> order = all;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t c) {
+    return log.h_m[idx[a]] < log.h_m[idx[c]];
+  });
+  std::vector<double> sorted_h(order.size());
+  for (std::size_t m = 0; m < order.size(); ++m) sorted_h[m] = log.h_m[idx[order[m]]];
+  for (const auto& [first, last] : detail::bandRanges(sorted_h, options.height_bands)) {
+    HeightBand hb;
+    hb.count = last - first;
+    hb.h_min_m = sorted_h[first];
+    hb.h_max_m = sorted_h[last - 1];
+    double sum = 0.0;
+    for (std::size_t m = first; m < last; ++m) sum += sorted_h[m];
+    hb.h_mean_m = sum / static_cast<double>(hb.count);
+    if (hb.count >= options.min_band_samples) {
+      hb.k_T_N_per_rpm2 = fitOne(0, order, first, last, nullptr);
+      hb.k_TX_N_per_rpm2 = fitOne(1, order, first, last, nullptr);
+      hb.k_TY_N_per_rpm2 = fitOne(2, order, first, last, nullptr);
+      hb.k_I_Nm_per_rpm2 = fitOne(3, order, first, last, nullptr);
+    }
+    out.bands.push_back(hb);
+  }
+  if (out.bands.empty() || !out.bands.back().k_T_N_per_rpm2) {
+    throw IdentError(log.source + ": cannot fit k_T in the top height band (too few samples)");
+  }
+  out.k_T_top_N_per_rpm2 = *out.bands.back().k_T_N_per_rpm2;
+  if (out.bands.size() < 2) {
+    out.warnings.push_back("all level samples are at one height: no per-height coefficients");
+  }
+  return out;
+}
+
+}  // namespace geaware::ident

@@ -1,0 +1,148 @@
+// The shared solvers: least-squares estimates with honest standard errors, and a robust scheme
+// that ignores gross outliers.
+
+#include "geaware/ident/least_squares.hpp"
+
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "synthetic.hpp"
+
+namespace {
+
+using geaware::ident::fitLinear;
+using geaware::ident::fitNonlinear;
+using geaware::ident::LeastSquaresFit;
+using geaware::ident::NonlinearProblem;
+using geaware::ident::RobustLoss;
+using geaware::ident::RobustOptions;
+
+struct Line {
+  std::vector<double> x, y;
+};
+
+Line line(std::size_t n, std::uint64_t seed, double outlier_fraction = 0.0) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0.0, 0.1);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Line l;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = 10.0 * unit(rng);
+    double y = 2.0 + 0.5 * x + noise(rng);
+    if (unit(rng) < outlier_fraction) y += 30.0 + 20.0 * unit(rng);  // one-sided: the worst case
+    l.x.push_back(x);
+    l.y.push_back(y);
+  }
+  return l;
+}
+
+LeastSquaresFit fitLine(const Line& l, const RobustOptions& o) {
+  return fitLinear(l.x.size(), 2,
+                   [&](std::size_t i, double* x, double& y, double& w) {
+                     x[0] = 1.0;
+                     x[1] = l.x[i];
+                     y = l.y[i];
+                     w = 1.0;
+                     return true;
+                   },
+                   o);
+}
+
+// Over many seeds the z-scores of an honest estimator have unit variance. 200 seeds: the sample
+// variance of z² lies in [0.75, 1.3] with probability > 99.9 %.
+TEST(LeastSquares, LinearStandardErrorsAreHonestOverManySeeds) {
+  double z2 = 0.0;
+  constexpr int kSeeds = 200;
+  for (int s = 0; s < kSeeds; ++s) {
+    const auto fit = fitLine(line(200, static_cast<std::uint64_t>(s)), {});
+    ASSERT_TRUE(fit.ok) << fit.message;
+    const double z = (fit.x(1) - 0.5) / std::sqrt(fit.covariance(1, 1));
+    z2 += z * z;
+  }
+  z2 /= kSeeds;
+  EXPECT_GT(z2, 0.75);
+  EXPECT_LT(z2, 1.3);
+}
+
+TEST(LeastSquares, StandardErrorShrinksAsOneOverRootN) {
+  const auto a = fitLine(line(2000, 1), {});
+  const auto b = fitLine(line(8000, 2), {});
+  EXPECT_NEAR(std::sqrt(a.covariance(1, 1) / b.covariance(1, 1)), 2.0, 0.2);
+}
+
+TEST(LeastSquares, LinearRobustFitIgnoresFivePercentGrossOutliers) {
+  const Line l = line(4000, 7, 0.05);
+  const auto robust = fitLine(l, {});
+  ASSERT_TRUE(robust.ok);
+  EXPECT_TRUE(ident_test::withinSigmas(robust.estimate(0), 2.0));
+  EXPECT_TRUE(ident_test::withinSigmas(robust.estimate(1), 0.5));
+  EXPECT_NEAR(static_cast<double>(robust.stats.outliers), 0.05 * 4000, 0.015 * 4000);
+  EXPECT_NEAR(robust.stats.residual_rms, 0.1, 0.01);
+  // Plain least squares is pulled far off by the same data.
+  const auto plain = fitLine(l, {RobustLoss::kNone, 1.0, 0.0});
+  EXPECT_GT(std::abs(plain.x(0) - 2.0), 1.0);
+}
+
+TEST(LeastSquares, SingularProblemsAreReportedNotSolved) {
+  const auto fit = fitLinear(100, 2, [](std::size_t, double* x, double& y, double& w) {
+    x[0] = 1.0;
+    x[1] = 2.0;  // collinear with x[0]
+    y = 1.0;
+    w = 1.0;
+    return true;
+  });
+  EXPECT_FALSE(fit.ok);
+  EXPECT_NE(fit.message.find("not identifiable"), std::string::npos) << fit.message;
+  const auto few = fitLinear(2, 2, [](std::size_t i, double* x, double& y, double& w) {
+    x[0] = 1.0;
+    x[1] = static_cast<double>(i);
+    y = 1.0;
+    w = 1.0;
+    return true;
+  });
+  EXPECT_FALSE(few.ok);
+  EXPECT_NE(few.message.find("too few samples"), std::string::npos) << few.message;
+}
+
+// y = a·exp(−b·x) with Cauchy and Huber losses: both recover (a, b) despite 5 % outliers.
+TEST(LeastSquares, NonlinearRobustFitWithEitherLoss) {
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> noise(0.0, 0.02);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<double> xs, ys;
+  for (int i = 0; i < 5000; ++i) {
+    const double x = 3.0 * unit(rng);
+    double y = 1.5 * std::exp(-0.8 * x) + noise(rng);
+    if (unit(rng) < 0.05) y -= 2.0 + unit(rng);
+    xs.push_back(x);
+    ys.push_back(y);
+  }
+  NonlinearProblem p;
+  p.samples = xs.size();
+  p.parameters = 2;
+  p.residual = [&](std::size_t i, const double* x, double& r, double* g) {
+    const double e = std::exp(-x[1] * xs[i]);
+    r = ys[i] - x[0] * e;
+    if (g != nullptr) {
+      g[0] = -e;
+      g[1] = x[0] * xs[i] * e;
+    }
+    return true;
+  };
+  p.scales = {1.0, 1.0};
+  for (const auto loss : {RobustLoss::kHuber, RobustLoss::kCauchy}) {
+    const auto fit = fitNonlinear(p, Eigen::Vector2d(1.0, 0.3), {loss, loss == RobustLoss::kHuber ? 1.345 : 2.385, 4.0});
+    ASSERT_TRUE(fit.ok) << fit.message;
+    EXPECT_TRUE(ident_test::withinSigmas(fit.estimate(0), 1.5));
+    EXPECT_TRUE(ident_test::withinSigmas(fit.estimate(1), 0.8));
+    EXPECT_NEAR(fit.stats.residual_rms, 0.02, 0.002);
+  }
+}
+
+TEST(LeastSquares, RobustSigmaIsTheNormalConsistentMad) {
+  EXPECT_NEAR(geaware::ident::robustSigma({1.0, 2.0, 3.0, 4.0, 100.0}), 1.482602218505602, 1e-12);
+}
+
+}  // namespace
