@@ -7,6 +7,8 @@
 #include <CLI/CLI.hpp>
 
 #include "commands.hpp"
+#include "identify_command.hpp"
+#include "rig_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"geaware — ground-effect-aware modelling, identification and control for multicopters"};
@@ -16,6 +18,10 @@ int main(int argc, char** argv) {
   std::function<int()> run;
   const auto model = geaware::cli::addModelCommand(app);
   app.get_subcommand("model")->callback([&] { run = model; });
+  const auto identify = geaware::cli::addIdentifyCommand(app);
+  app.get_subcommand("identify")->callback([&] { run = identify; });
+  const auto rig = geaware::cli::addRigCommand(app);
+  app.get_subcommand("rig")->callback([&] { run = rig; });
 
   try {
     app.parse(argc, argv);
