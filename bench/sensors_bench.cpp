@@ -61,27 +61,30 @@ void BM_RangerFrameHeightMap(benchmark::State& st) {
 }
 BENCHMARK(BM_RangerFrameHeightMap);
 
-void BM_ImuSample(benchmark::State& st) {
-  geaware::sim::ImuParams p;
-  p.rate_Hz = 1e5;  // due at every call below
-  geaware::sim::Imu imu(p, 1);
+/// Times `sample(hover(t))` with t advancing by `dt_s` per iteration, so that a sensor whose
+/// rate is 1/dt_s is due at every call.
+template <typename Sample>
+void sampleAlongHover(benchmark::State& st, double dt_s, Sample&& sample) {
   double t = 0.0;
   for (auto _ : st) {
-    benchmark::DoNotOptimize(imu.sample(hover(t)));
-    t += 1e-5;
+    benchmark::DoNotOptimize(sample(hover(t)));
+    t += dt_s;
   }
+}
+
+void BM_ImuSample(benchmark::State& st) {
+  geaware::sim::ImuParams p;
+  p.rate_Hz = 1e5;
+  geaware::sim::Imu imu(p, 1);
+  sampleAlongHover(st, 1e-5, [&imu](const PlantState& s) { return imu.sample(s); });
 }
 BENCHMARK(BM_ImuSample);
 
 void BM_MocapStep(benchmark::State& st) {
   geaware::sim::MocapParams p;
-  p.rate_Hz = 1000.0;  // a capture and a delivery at every call below
+  p.rate_Hz = 1000.0;  // a capture and a delivery at every call
   geaware::sim::Mocap mocap(p, 1);
-  double t = 0.0;
-  for (auto _ : st) {
-    benchmark::DoNotOptimize(mocap.step(hover(t)));
-    t += 1e-3;
-  }
+  sampleAlongHover(st, 1e-3, [&mocap](const PlantState& s) { return mocap.step(s); });
 }
 BENCHMARK(BM_MocapStep);
 
@@ -89,11 +92,7 @@ void BM_RotorTelemetrySample(benchmark::State& st) {
   geaware::sim::RotorTelemetryParams p;
   p.rate_Hz = 1e5;
   geaware::sim::RotorTelemetrySensor tel(p, 1);
-  double t = 0.0;
-  for (auto _ : st) {
-    benchmark::DoNotOptimize(tel.sample(hover(t)));
-    t += 1e-5;
-  }
+  sampleAlongHover(st, 1e-5, [&tel](const PlantState& s) { return tel.sample(s); });
 }
 BENCHMARK(BM_RotorTelemetrySample);
 

@@ -1,48 +1,30 @@
 #include "geaware/estimation/disturbance_observer.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <string>
 
+#include "geaware/model/field_check.hpp"
 #include "geaware/model/units.hpp"
+#include "geaware/model/vehicle_model.hpp"
 
 namespace geaware::estimation {
-namespace {
-
-std::string show(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
-}
-
-const DisturbanceObserverParams& validated(const DisturbanceObserverParams& p) {
-  if (auto errors = p.validate(); !errors.empty())
-    throw model::InvalidParameters(std::move(errors));
-  return p;
-}
-
-}  // namespace
 
 std::vector<model::FieldError> DisturbanceObserverParams::validate() const {
   std::vector<model::FieldError> e;
-  if (!(std::isfinite(rate_hz) && rate_hz > 0.0)) {
-    e.push_back({"disturbance_observer.rate_hz", show(rate_hz), "a finite number > 0"});
-  }
+  model::FieldChecker c(e);
+  c.positive("disturbance_observer.rate_hz", rate_hz);
   if (!(std::isfinite(filter_cutoff_hz) && filter_cutoff_hz > 0.0 &&
         filter_cutoff_hz < 0.5 * rate_hz)) {
-    e.push_back({"disturbance_observer.filter_cutoff_hz", show(filter_cutoff_hz),
-                 "a number in (0, rate_hz/2)"});
+    c.fail("disturbance_observer.filter_cutoff_hz", model::formatValue(filter_cutoff_hz),
+           "a number in (0, rate_hz/2)");
   }
-  if (!(std::isfinite(min_thrust_fraction) && min_thrust_fraction > 0.0)) {
-    e.push_back({"disturbance_observer.min_thrust_fraction", show(min_thrust_fraction),
-                 "a finite number > 0"});
-  }
+  c.positive("disturbance_observer.min_thrust_fraction", min_thrust_fraction);
   return e;
 }
 
 DisturbanceObserver::DisturbanceObserver(const model::VehicleModel& vehicle,
                                          DisturbanceObserverParams params)
-    : params_(validated(params)),
+    : params_(model::validated(params)),
       mass_kg_(vehicle.params().mass_kg),
       inertia_kgm2_(vehicle.params().inertia_kgm2),
       mixer_(vehicle.mixer()),
@@ -90,14 +72,18 @@ DisturbanceEstimate DisturbanceObserver::update(const DisturbanceObserverInput& 
   const Eigen::Vector3d f_f = accel_filter_.update(in.accel_B);
   const double thrust_f = thrust_filter_.update(Eigen::Matrix<double, 1, 1>(wrench(0)))(0);
   const Eigen::Quaterniond q = in.q_WB.normalized();
-
-  if (!have_prev_) {
+  // This call's filtered inputs become the previous sample of the next one.
+  const auto remember = [&] {
     w_prev_ = w_f;
     tau_prev_ = tau_f;
     f_prev_ = f_f;
     thrust_prev_ = thrust_f;
     q_prev_ = q;
     t_prev_ = in.t_s;
+  };
+
+  if (!have_prev_) {
+    remember();
     have_prev_ = true;
     status_ = ObserverStatus::kWarmingUp;
     last_ = DisturbanceEstimate{};
@@ -132,12 +118,7 @@ DisturbanceEstimate DisturbanceObserver::update(const DisturbanceObserverInput& 
     out.f_g_ratio = mass_kg_ * out.a_ext_W.z() / out.thrust_f_N;
   }
 
-  w_prev_ = w_f;
-  tau_prev_ = tau_f;
-  f_prev_ = f_f;
-  thrust_prev_ = thrust_f;
-  q_prev_ = q;
-  t_prev_ = in.t_s;
+  remember();
   status_ = ObserverStatus::kOk;
   last_ = out;
   return out;

@@ -3,10 +3,10 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <utility>
 
+#include "geaware/model/field_check.hpp"
 #include "geaware/model/vehicle_model.hpp"
 
 namespace geaware::estimation {
@@ -20,16 +20,6 @@ using Cov = Eskf::Cov;
 
 // Offsets of the error-state blocks.
 constexpr int kP = 0, kV = 3, kTh = 6, kBa = 9, kBg = 12;
-
-std::string show(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
-}
-
-void positive(std::vector<model::FieldError>& out, const char* field, double v) {
-  if (!(std::isfinite(v) && v > 0.0)) out.push_back({field, show(v), "a finite number > 0"});
-}
 
 Mat3 skew(const Vec3& w) {
   Mat3 S;
@@ -95,32 +85,34 @@ Eigen::Quaterniond quaternionExp(const Eigen::Vector3d& theta) noexcept {
 
 std::vector<model::FieldError> EskfParams::validate() const {
   std::vector<model::FieldError> e;
-  positive(e, "eskf.imu_rate_hz", imu_rate_hz);
-  positive(e, "eskf.accel_noise_density", accel_noise_density);
-  positive(e, "eskf.gyro_noise_density", gyro_noise_density);
-  positive(e, "eskf.accel_bias_random_walk", accel_bias_random_walk);
-  positive(e, "eskf.gyro_bias_random_walk", gyro_bias_random_walk);
-  positive(e, "eskf.mocap_position_std_m", mocap_position_std_m);
-  positive(e, "eskf.mocap_attitude_std_rad", mocap_attitude_std_rad);
-  positive(e, "eskf.init_position_std_m", init_position_std_m);
-  positive(e, "eskf.init_velocity_std_mps", init_velocity_std_mps);
-  positive(e, "eskf.init_attitude_std_rad", init_attitude_std_rad);
-  positive(e, "eskf.init_accel_bias_std_mps2", init_accel_bias_std_mps2);
-  positive(e, "eskf.init_gyro_bias_std_radps", init_gyro_bias_std_radps);
-  positive(e, "eskf.gate_chi2", gate_chi2);
-  positive(e, "eskf.max_imu_gap_s", max_imu_gap_s);
-  positive(e, "eskf.gravity_mps2", gravity_mps2);
+  model::FieldChecker c(e);
+  c.positive("eskf.imu_rate_hz", imu_rate_hz);
+  c.positive("eskf.accel_noise_density", accel_noise_density);
+  c.positive("eskf.gyro_noise_density", gyro_noise_density);
+  c.positive("eskf.accel_bias_random_walk", accel_bias_random_walk);
+  c.positive("eskf.gyro_bias_random_walk", gyro_bias_random_walk);
+  c.positive("eskf.mocap_position_std_m", mocap_position_std_m);
+  c.positive("eskf.mocap_attitude_std_rad", mocap_attitude_std_rad);
+  c.positive("eskf.init_position_std_m", init_position_std_m);
+  c.positive("eskf.init_velocity_std_mps", init_velocity_std_mps);
+  c.positive("eskf.init_attitude_std_rad", init_attitude_std_rad);
+  c.positive("eskf.init_accel_bias_std_mps2", init_accel_bias_std_mps2);
+  c.positive("eskf.init_gyro_bias_std_radps", init_gyro_bias_std_radps);
+  c.positive("eskf.gate_chi2", gate_chi2);
+  c.positive("eskf.max_imu_gap_s", max_imu_gap_s);
+  c.positive("eskf.gravity_mps2", gravity_mps2);
   if (max_consecutive_rejections < 0) {
-    e.push_back({"eskf.max_consecutive_rejections", std::to_string(max_consecutive_rejections),
-                 "an integer ≥ 0 (0 disables the recovery)"});
+    c.fail("eskf.max_consecutive_rejections", std::to_string(max_consecutive_rejections),
+           "an integer ≥ 0 (0 disables the recovery)");
   }
   // The history must reach back over the largest latency, with a margin of two samples for the
   // interpolation and for jitter.
   const double reach_s = (Eskf::kHistory - 2) / imu_rate_hz;
   if (!(std::isfinite(max_mocap_latency_s) && max_mocap_latency_s >= 0.0 &&
         max_mocap_latency_s <= reach_s)) {
-    e.push_back({"eskf.max_mocap_latency_s", show(max_mocap_latency_s),
-                 "a number in [0, " + show(reach_s) + "] (the history buffer at imu_rate_hz)"});
+    c.fail(
+        "eskf.max_mocap_latency_s", model::formatValue(max_mocap_latency_s),
+        "a number in [0, " + model::formatValue(reach_s) + "] (the history buffer at imu_rate_hz)");
   }
   return e;
 }

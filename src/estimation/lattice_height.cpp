@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <numbers>
 #include <string>
 #include <utility>
 
+#include "geaware/model/field_check.hpp"
 #include "geaware/model/mixer.hpp"
 #include "geaware/model/vehicle_model.hpp"
 
@@ -18,12 +18,6 @@ using Vec3 = Eigen::Vector3d;
 constexpr int kN = model::RangerFrame::kMaxZones;
 constexpr int kUnassigned = -1;
 constexpr int kDiscarded = -2;  // inlier of a surface, but not in a large enough zone patch
-
-std::string show(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
-}
 
 /// splitmix64 (Steele et al. 2014): tiny, deterministic, good enough to draw RANSAC triples.
 struct SplitMix64 {
@@ -144,46 +138,26 @@ LatticeHeightParams LatticeHeightParams::forVehicle(const model::VehicleParams& 
 
 std::vector<model::FieldError> LatticeHeightParams::validate() const {
   std::vector<model::FieldError> e;
+  model::FieldChecker c(e);
   if (!rotor_plane_centre_B.allFinite()) {
-    e.push_back({"lattice.rotor_plane_centre_B", "non-finite", "a finite vector [m]"});
+    c.fail("lattice.rotor_plane_centre_B", "non-finite", "a finite vector [m]");
   }
-  if (!(std::isfinite(diagonal_rotor_distance_m) && diagonal_rotor_distance_m >= 0.0)) {
-    e.push_back({"lattice.diagonal_rotor_distance_m", show(diagonal_rotor_distance_m),
-                 "a finite number ≥ 0"});
-  }
-  if (!(std::isfinite(min_range_m) && min_range_m >= 0.0)) {
-    e.push_back({"lattice.min_range_m", show(min_range_m), "a finite number ≥ 0"});
-  }
+  c.nonNegative("lattice.diagonal_rotor_distance_m", diagonal_rotor_distance_m);
+  c.nonNegative("lattice.min_range_m", min_range_m);
   if (!(std::isfinite(max_range_m) && max_range_m > min_range_m)) {
-    e.push_back({"lattice.max_range_m", show(max_range_m), "a finite number > min_range_m"});
+    c.fail("lattice.max_range_m", model::formatValue(max_range_m), "a finite number > min_range_m");
   }
-  if (!(std::isfinite(inlier_threshold_m) && inlier_threshold_m > 0.0)) {
-    e.push_back({"lattice.inlier_threshold_m", show(inlier_threshold_m), "a finite number > 0"});
-  }
-  if (ransac_iterations < 1 || ransac_iterations > 10000) {
-    e.push_back({"lattice.ransac_iterations", std::to_string(ransac_iterations),
-                 "an integer in [1, 10000]"});
-  }
-  if (max_surfaces < 1 || max_surfaces > LatticeHeightEstimator::kMaxSurfaces) {
-    e.push_back(
-        {"lattice.max_surfaces", std::to_string(max_surfaces),
-         "an integer in [1, " + std::to_string(LatticeHeightEstimator::kMaxSurfaces) + "]"});
-  }
-  if (min_inliers < 3)
-    e.push_back({"lattice.min_inliers", std::to_string(min_inliers), "an integer ≥ 3"});
-  if (min_component_zones < 1) {
-    e.push_back(
-        {"lattice.min_component_zones", std::to_string(min_component_zones), "an integer ≥ 1"});
-  }
-  if (!(std::isfinite(range_noise_std_m) && range_noise_std_m > 0.0)) {
-    e.push_back({"lattice.range_noise_std_m", show(range_noise_std_m), "a finite number > 0"});
-  }
-  if (!(std::isfinite(ground_slope_prior) && ground_slope_prior > 0.0)) {
-    e.push_back({"lattice.ground_slope_prior", show(ground_slope_prior), "a finite number > 0"});
-  }
+  c.positive("lattice.inlier_threshold_m", inlier_threshold_m);
+  c.integerRange("lattice.ransac_iterations", ransac_iterations, 1, 10000);
+  c.integerRange("lattice.max_surfaces", max_surfaces, 1, LatticeHeightEstimator::kMaxSurfaces);
+  c.integerAtLeast("lattice.min_inliers", min_inliers, 3);
+  c.integerAtLeast("lattice.min_component_zones", min_component_zones, 1);
+  c.positive("lattice.range_noise_std_m", range_noise_std_m);
+  c.positive("lattice.ground_slope_prior", ground_slope_prior);
   if (!(std::isfinite(max_ground_tilt_rad) && max_ground_tilt_rad > 0.0 &&
         max_ground_tilt_rad < 0.5 * std::numbers::pi)) {
-    e.push_back({"lattice.max_ground_tilt_rad", show(max_ground_tilt_rad), "a number in (0, π/2)"});
+    c.fail("lattice.max_ground_tilt_rad", model::formatValue(max_ground_tilt_rad),
+           "a number in (0, π/2)");
   }
   return e;
 }

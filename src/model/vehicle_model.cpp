@@ -2,27 +2,14 @@
 
 #include <cmath>
 
+#include "geaware/model/field_check.hpp"
 #include "geaware/model/units.hpp"
 
 namespace geaware::model {
-namespace {
-
-std::string describe(const std::vector<FieldError>& errors) {
-  std::string s = "invalid vehicle parameters:";
-  for (const auto& e : errors) s += "\n  " + e.field + " = " + e.value + ": expected " + e.expected;
-  return s;
-}
-
-const VehicleParams& validated(const VehicleParams& p) {
-  auto errors = p.validate();
-  if (!errors.empty()) throw InvalidParameters(std::move(errors));
-  return p;
-}
-
-}  // namespace
 
 InvalidParameters::InvalidParameters(std::vector<FieldError> errors)
-    : std::invalid_argument(describe(errors)), errors_(std::move(errors)) {}
+    : std::invalid_argument(describeErrors("invalid vehicle parameters:", errors)),
+      errors_(std::move(errors)) {}
 
 VehicleModel::VehicleModel(VehicleParams params)
     : params_(std::move(params)),

@@ -1,105 +1,85 @@
 #include "geaware/model/vehicle_params.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <string>
 
+#include "geaware/model/field_check.hpp"
+
 namespace geaware::model {
-namespace {
-
-std::string show(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
-}
-
-/// Collects errors; every check names the key path as written in the vehicle file.
-class Checker {
- public:
-  explicit Checker(std::vector<FieldError>& out) : out_(out) {}
-
-  /// Finite and lo < v ≤ hi (or lo ≤ v when lo_inclusive).
-  bool range(const std::string& field, double v, double lo, double hi, bool lo_inclusive,
-             const char* unit) {
-    const bool ok = std::isfinite(v) && (lo_inclusive ? v >= lo : v > lo) && v <= hi;
-    if (!ok) {
-      out_.push_back({field, show(v),
-                      std::string("a finite number in ") + (lo_inclusive ? "[" : "(") + show(lo) +
-                          ", " + show(hi) + "] " + unit});
-    }
-    return ok;
-  }
-  void fail(const std::string& field, const std::string& value, const std::string& expected) {
-    out_.push_back({field, value, expected});
-  }
-
- private:
-  std::vector<FieldError>& out_;
-};
-
-}  // namespace
 
 std::vector<FieldError> VehicleParams::validate() const {
   std::vector<FieldError> errors;
-  Checker c(errors);
+  // Every check names the key path as written in the vehicle file.
+  FieldChecker c(errors);
+  using enum LowerBound;
 
   // Generous physical ranges: a toy micro-drone to a heavy-lift octo-sized vehicle.
-  c.range("mass_kg", mass_kg, 0.0, 1000.0, false, "kg");
+  c.range("mass_kg", mass_kg, 0.0, 1000.0, kExclusive, "kg");
   const char* axes[3] = {"inertia_kgm2.xx", "inertia_kgm2.yy", "inertia_kgm2.zz"};
   bool inertia_ok = true;
-  for (int i = 0; i < 3; ++i) inertia_ok &= c.range(axes[i], inertia_kgm2[i], 0.0, 1000.0, false, "kg·m²");
+  for (int i = 0; i < 3; ++i)
+    inertia_ok &= c.range(axes[i], inertia_kgm2[i], 0.0, 1000.0, kExclusive, "kg·m²");
   if (inertia_ok) {
     // Principal moments of a real body satisfy the triangle inequalities.
     for (int i = 0; i < 3; ++i) {
       const double others = inertia_kgm2[(i + 1) % 3] + inertia_kgm2[(i + 2) % 3];
       if (inertia_kgm2[i] > others * (1.0 + 1e-9)) {
-        c.fail(axes[i], show(inertia_kgm2[i]),
-               "at most the sum of the other two principal moments (" + show(others) +
+        c.fail(axes[i], formatValue(inertia_kgm2[i]),
+               "at most the sum of the other two principal moments (" + formatValue(others) +
                    " kg·m²): no rigid body has these moments");
       }
     }
   }
-  const bool b_ok = c.range("geometry.diagonal_rotor_distance_m", diagonal_rotor_distance_m, 0.0, 10.0, false, "m");
-  const bool r_ok = c.range("geometry.propeller_radius_m", propeller_radius_m, 0.0, 5.0, false, "m");
+  const bool b_ok = c.range("geometry.diagonal_rotor_distance_m", diagonal_rotor_distance_m, 0.0,
+                            10.0, kExclusive, "m");
+  const bool r_ok =
+      c.range("geometry.propeller_radius_m", propeller_radius_m, 0.0, 5.0, kExclusive, "m");
   if (b_ok && r_ok) {
     // Adjacent rotors of an X quadrotor are b/√2 apart; their discs must not overlap.
     const double adjacent = diagonal_rotor_distance_m / std::sqrt(2.0);
     if (2.0 * propeller_radius_m > adjacent) {
-      c.fail("geometry.propeller_radius_m", show(propeller_radius_m),
-             "at most half the adjacent-rotor distance b/√2 = " + show(adjacent) +
+      c.fail("geometry.propeller_radius_m", formatValue(propeller_radius_m),
+             "at most half the adjacent-rotor distance b/√2 = " + formatValue(adjacent) +
                  " m, or the propellers overlap");
     }
   }
-  c.range("geometry.min_rotor_plane_height_m", min_rotor_plane_height_m, 0.0, 10.0, true, "m");
+  c.range("geometry.min_rotor_plane_height_m", min_rotor_plane_height_m, 0.0, 10.0, kInclusive,
+          "m");
 
-  c.range("rotor.k_T_N_per_rpm2", rotor.k_T_N_per_rpm2, 0.0, 1.0, false, "N/rpm²");
-  c.range("rotor.k_TX_N_per_rpm2", rotor.k_TX_N_per_rpm2, 0.0, 1.0, false, "N/rpm²");
-  c.range("rotor.k_TY_N_per_rpm2", rotor.k_TY_N_per_rpm2, 0.0, 1.0, false, "N/rpm²");
-  c.range("rotor.k_I_Nm_per_rpm2", rotor.k_I_Nm_per_rpm2, 0.0, 1.0, false, "N·m/rpm²");
-  c.range("rotor.J_R_kgm2", rotor.J_R_kgm2, 0.0, 1.0, true, "kg·m²");
+  c.range("rotor.k_T_N_per_rpm2", rotor.k_T_N_per_rpm2, 0.0, 1.0, kExclusive, "N/rpm²");
+  c.range("rotor.k_TX_N_per_rpm2", rotor.k_TX_N_per_rpm2, 0.0, 1.0, kExclusive, "N/rpm²");
+  c.range("rotor.k_TY_N_per_rpm2", rotor.k_TY_N_per_rpm2, 0.0, 1.0, kExclusive, "N/rpm²");
+  c.range("rotor.k_I_Nm_per_rpm2", rotor.k_I_Nm_per_rpm2, 0.0, 1.0, kExclusive, "N·m/rpm²");
+  c.range("rotor.J_R_kgm2", rotor.J_R_kgm2, 0.0, 1.0, kInclusive, "kg·m²");
 
   const auto& t = throttle;
-  const bool c2_ok = c.range("throttle_curve.c2_rpm2", t.c2_rpm2, -1e12, 1e12, true, "rpm²");
-  const bool c1_ok = c.range("throttle_curve.c1_rpm2", t.c1_rpm2, -1e12, 1e12, true, "rpm²");
-  const bool c0_ok = c.range("throttle_curve.c0_rpm2", t.c0_rpm2, 0.0, 1e12, true, "rpm² (n² at zero throttle)");
+  const bool c2_ok = c.range("throttle_curve.c2_rpm2", t.c2_rpm2, -1e12, 1e12, kInclusive, "rpm²");
+  const bool c1_ok = c.range("throttle_curve.c1_rpm2", t.c1_rpm2, -1e12, 1e12, kInclusive, "rpm²");
+  const bool c0_ok = c.range("throttle_curve.c0_rpm2", t.c0_rpm2, 0.0, 1e12, kInclusive,
+                             "rpm² (n² at zero throttle)");
   if (c2_ok && c1_ok && c0_ok) {
     // n² must rise strictly over the whole throttle range so that the curve can be inverted:
     // its slope c1 + 2·c2·t is linear in t, so checking both ends suffices.
     if (!(t.c1_rpm2 > 0.0 && t.c1_rpm2 + 2.0 * t.c2_rpm2 > 0.0)) {
-      c.fail("throttle_curve", "c1=" + show(t.c1_rpm2) + ", c2=" + show(t.c2_rpm2),
+      c.fail("throttle_curve", "c1=" + formatValue(t.c1_rpm2) + ", c2=" + formatValue(t.c2_rpm2),
              "n² strictly increasing on throttle [0, 1] (c1 > 0 and c1 + 2·c2 > 0)");
     }
   }
 
-  c.range("ground_effect.additional_thrust.g1_m2", additional_thrust.g1_m2, 0.0, 100.0, false, "m²");
-  c.range("ground_effect.additional_thrust.g2_m2", additional_thrust.g2_m2, 0.0, 100.0, true, "m²");
+  c.range("ground_effect.additional_thrust.g1_m2", additional_thrust.g1_m2, 0.0, 100.0, kExclusive,
+          "m²");
+  c.range("ground_effect.additional_thrust.g2_m2", additional_thrust.g2_m2, 0.0, 100.0, kInclusive,
+          "m²");
   const auto& l = leveling_torque;
-  const bool g3_ok = c.range("ground_effect.leveling_torque.g3_m", l.g3_m, -100.0, 100.0, true, "m");
-  const bool g4_ok = c.range("ground_effect.leveling_torque.g4_m2", l.g4_m2, 0.0, 100.0, false, "m²");
-  c.range("ground_effect.leveling_torque.scale_m4", l.scale_m4, 0.0, 100.0, true, "m⁴");
+  const bool g3_ok =
+      c.range("ground_effect.leveling_torque.g3_m", l.g3_m, -100.0, 100.0, kInclusive, "m");
+  const bool g4_ok =
+      c.range("ground_effect.leveling_torque.g4_m2", l.g4_m2, 0.0, 100.0, kExclusive, "m²");
+  c.range("ground_effect.leveling_torque.scale_m4", l.scale_m4, 0.0, 100.0, kInclusive, "m⁴");
   if (g3_ok && g4_ok && l.g3_m < 0.0 && l.g3_m * l.g3_m >= 4.0 * l.g4_m2) {
     // h² + g3·h + g4 would vanish at some h > 0 and M_G would be infinite there.
-    c.fail("ground_effect.leveling_torque", "g3=" + show(l.g3_m) + ", g4=" + show(l.g4_m2),
+    c.fail("ground_effect.leveling_torque",
+           "g3=" + formatValue(l.g3_m) + ", g4=" + formatValue(l.g4_m2),
            "h² + g3·h + g4 > 0 for every h ≥ 0 (g3 ≥ 0 or g3² < 4·g4)");
   }
 
@@ -114,12 +94,13 @@ std::vector<FieldError> VehicleParams::validate() const {
   } else {
     for (std::size_t i = 0; i < n; ++i) {
       const std::string idx = "[" + std::to_string(i) + "]";
-      c.range("drag.heights_m" + idx, drag.heights_m[i], 0.0, 1000.0, true, "m");
-      c.range("drag.d_x_N_per_mps" + idx, drag.d_x_N_per_mps[i], 0.0, 100.0, true, "N/(m/s)");
-      c.range("drag.d_y_N_per_mps" + idx, drag.d_y_N_per_mps[i], 0.0, 100.0, true, "N/(m/s)");
+      c.range("drag.heights_m" + idx, drag.heights_m[i], 0.0, 1000.0, kInclusive, "m");
+      c.range("drag.d_x_N_per_mps" + idx, drag.d_x_N_per_mps[i], 0.0, 100.0, kInclusive, "N/(m/s)");
+      c.range("drag.d_y_N_per_mps" + idx, drag.d_y_N_per_mps[i], 0.0, 100.0, kInclusive, "N/(m/s)");
       if (i > 0 && !(drag.heights_m[i] > drag.heights_m[i - 1])) {
-        c.fail("drag.heights_m" + idx, show(drag.heights_m[i]),
-               "strictly greater than the previous height " + show(drag.heights_m[i - 1]) + " m");
+        c.fail("drag.heights_m" + idx, formatValue(drag.heights_m[i]),
+               "strictly greater than the previous height " + formatValue(drag.heights_m[i - 1]) +
+                   " m");
       }
     }
   }

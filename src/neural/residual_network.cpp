@@ -2,10 +2,11 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <string>
 #include <utility>
+
+#include "geaware/model/field_check.hpp"
 
 namespace geaware::neural {
 namespace {
@@ -14,20 +15,8 @@ namespace {
 /// never touches the heap.
 using Activation = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxWidth, 1>;
 
-std::string show(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
-}
-
 std::string shape(Eigen::Index rows, Eigen::Index cols) {
   return std::to_string(rows) + "x" + std::to_string(cols);
-}
-
-std::string describe(const std::vector<model::FieldError>& errors) {
-  std::string s = "invalid residual network:";
-  for (const auto& e : errors) s += "\n  " + e.field + " = " + e.value + ": expected " + e.expected;
-  return s;
 }
 
 NetworkWeights validated(NetworkWeights w) {
@@ -73,6 +62,7 @@ double lipschitzBound(const std::vector<DenseLayer>& layers) {
 
 std::vector<model::FieldError> NetworkWeights::validate() const {
   std::vector<model::FieldError> errors;
+  model::FieldChecker c(errors);
   if (layers.empty() || layers.size() > static_cast<std::size_t>(kMaxLayers)) {
     errors.push_back({"layers", std::to_string(layers.size()) + " layers",
                       "1 to " + std::to_string(kMaxLayers) + " dense layers"});
@@ -112,26 +102,20 @@ std::vector<model::FieldError> NetworkWeights::validate() const {
   }
   for (int i = 0; i < kFeatureCount; ++i) {
     const std::string feature = std::string(featureNames()[static_cast<std::size_t>(i)]);
-    if (!std::isfinite(input_mean(i))) {
-      errors.push_back({"input_mean[" + std::to_string(i) + "] (" + feature + ")",
-                        show(input_mean(i)), "a finite number"});
-    }
-    if (!std::isfinite(input_std(i)) || !(input_std(i) > 0.0)) {
-      errors.push_back({"input_std[" + std::to_string(i) + "] (" + feature + ")",
-                        show(input_std(i)), "a finite number > 0"});
-    }
+    c.finite("input_mean[" + std::to_string(i) + "] (" + feature + ")", input_mean(i));
+    c.positive("input_std[" + std::to_string(i) + "] (" + feature + ")", input_std(i));
   }
   if (lipschitz_gamma) {
     const double gamma = *lipschitz_gamma;
     if (!std::isfinite(gamma) || !(gamma > 0.0)) {
-      errors.push_back({"lipschitz_gamma", show(gamma), "a finite number > 0 (or none)"});
+      c.fail("lipschitz_gamma", model::formatValue(gamma), "a finite number > 0 (or none)");
     } else if (dims_ok) {
       // The claim must hold: a file that says "γ-Lipschitz" but is not would void the
       // contraction argument of the controller's fixed-point iteration.
       const double bound = lipschitzBound(layers);
       if (!(bound <= gamma * (1.0 + kLipschitzTolerance))) {
-        errors.push_back({"lipschitz_gamma", show(gamma),
-                          "at least the product of the layers' spectral norms, " + show(bound)});
+        c.fail("lipschitz_gamma", model::formatValue(gamma),
+               "at least the product of the layers' spectral norms, " + model::formatValue(bound));
       }
     }
   }
@@ -139,7 +123,8 @@ std::vector<model::FieldError> NetworkWeights::validate() const {
 }
 
 InvalidNetwork::InvalidNetwork(std::vector<model::FieldError> errors)
-    : std::invalid_argument(describe(errors)), errors_(std::move(errors)) {}
+    : std::invalid_argument(model::describeErrors("invalid residual network:", errors)),
+      errors_(std::move(errors)) {}
 
 ResidualNetwork::ResidualNetwork(NetworkWeights weights)
     : weights_(validated(std::move(weights))),

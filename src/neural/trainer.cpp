@@ -4,12 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <random>
 #include <stdexcept>
 #include <string>
 #include <utility>
+
+#include "geaware/model/field_check.hpp"
 
 // Why dlib, and what is ours. dlib (Debian's libdlib-dev) gives the dense/ReLU layers, their
 // back-propagation and Adam, and lets a training loop be written step by step
@@ -145,18 +146,6 @@ std::vector<DenseLayer> exportLayers(const std::vector<DlibDense>& dense) {
     layers.push_back(std::move(l));
   }
   return layers;
-}
-
-std::string show(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
-}
-
-std::string describe(const std::vector<model::FieldError>& errors) {
-  std::string s = "invalid training options:";
-  for (const auto& e : errors) s += "\n  " + e.field + " = " + e.value + ": expected " + e.expected;
-  return s;
 }
 
 /// Rows of the set, raw features as columns.
@@ -313,6 +302,7 @@ bool TrainingSet::add(const FeatureVector& x, const Eigen::Vector3d& force_W) {
 
 std::vector<model::FieldError> TrainOptions::validate() const {
   std::vector<model::FieldError> e;
+  model::FieldChecker c(e);
   if (hidden_widths.empty() || hidden_widths.size() > static_cast<std::size_t>(kMaxHiddenLayers)) {
     e.push_back({"hidden_widths", std::to_string(hidden_widths.size()) + " layers",
                  "1 to " + std::to_string(kMaxHiddenLayers) + " hidden layers"});
@@ -325,31 +315,26 @@ std::vector<model::FieldError> TrainOptions::validate() const {
   }
   if (epochs < 1) e.push_back({"epochs", std::to_string(epochs), "at least 1"});
   if (batch_size < 1) e.push_back({"batch_size", std::to_string(batch_size), "at least 1"});
-  if (!std::isfinite(learning_rate) || !(learning_rate > 0.0)) {
-    e.push_back({"learning_rate", show(learning_rate), "a finite number > 0"});
-  }
+  c.positive("learning_rate", learning_rate);
   if (!std::isfinite(weight_decay) || weight_decay < 0.0) {
-    e.push_back({"weight_decay", show(weight_decay), "a finite number >= 0"});
+    c.fail("weight_decay", model::formatValue(weight_decay), "a finite number >= 0");
   }
-  if (!std::isfinite(lipschitz_gamma) || !(lipschitz_gamma > 0.0)) {
-    e.push_back({"lipschitz_gamma", show(lipschitz_gamma), "a finite number > 0"});
-  }
+  c.positive("lipschitz_gamma", lipschitz_gamma);
   if (power_iterations < 1 || power_iterations > 100) {
     e.push_back({"power_iterations", std::to_string(power_iterations), "1..100"});
   }
   if (!(validation_fraction >= 0.0 && validation_fraction <= 0.9)) {
-    e.push_back({"validation_fraction", show(validation_fraction), "a number in [0, 0.9]"});
+    c.fail("validation_fraction", model::formatValue(validation_fraction), "a number in [0, 0.9]");
   }
-  if (!std::isfinite(min_input_std) || !(min_input_std > 0.0)) {
-    e.push_back({"min_input_std", show(min_input_std), "a finite number > 0"});
-  }
+  c.positive("min_input_std", min_input_std);
   return e;
 }
 
 TrainResult train(const TrainingSet& set, const TrainOptions& options,
                   const EpochCallback& on_epoch) {
   const auto errors = options.validate();
-  if (!errors.empty()) throw std::invalid_argument(describe(errors));
+  if (!errors.empty())
+    throw std::invalid_argument(model::describeErrors("invalid training options:", errors));
   const auto n_val = static_cast<std::size_t>(
       std::floor(options.validation_fraction * static_cast<double>(set.size())));
   if (set.size() <= n_val || (options.validation_fraction > 0.0 && n_val == 0)) {
@@ -357,7 +342,7 @@ TrainResult train(const TrainingSet& set, const TrainOptions& options,
         "training set of " + std::to_string(set.size()) +
         " rows is too small for validation "
         "fraction " +
-        show(options.validation_fraction) +
+        model::formatValue(options.validation_fraction) +
         ": need at least one training row and, when the fraction is > 0, one validation row");
   }
   switch (options.hidden_widths.size()) {

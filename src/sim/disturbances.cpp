@@ -3,29 +3,20 @@
 #include <cmath>
 #include <utility>
 
-#include "field_check.hpp"
+#include "geaware/model/field_check.hpp"
 #include "geaware/model/vehicle_model.hpp"
 
 namespace geaware::sim {
-namespace {
-
-template <typename P>
-const P& validated(const P& p) {
-  auto errors = p.validate();
-  if (!errors.empty()) throw model::InvalidParameters(std::move(errors));
-  return p;
-}
-
-}  // namespace
 
 std::vector<model::FieldError> GroundTurbulenceParams::validate() const {
   std::vector<model::FieldError> out;
-  detail::FieldCheck c(out);
+  model::FieldChecker c(out);
+  using enum model::LowerBound;
   c.nonNegative("force_std_N", force_std_N, "N");
   c.nonNegative("torque_std_Nm", torque_std_Nm, "N·m");
-  c.range("correlation_time_s", correlation_time_s, 0.0, 1e3, false, "s");
-  c.range("scale_height_m", scale_height_m, 0.0, 1e2, false, "m");
-  c.range("cutoff_height_m", cutoff_height_m, 0.0, 1e3, false, "m");
+  c.range("correlation_time_s", correlation_time_s, 0.0, 1e3, kExclusive, "s");
+  c.range("scale_height_m", scale_height_m, 0.0, 1e2, kExclusive, "m");
+  c.range("cutoff_height_m", cutoff_height_m, 0.0, 1e3, kExclusive, "m");
   return out;
 }
 
@@ -38,8 +29,9 @@ double turbulenceIntensity(const GroundTurbulenceParams& p, double height_m) noe
   return (f - f_max) / (1.0 - f_max);
 }
 
-GroundTurbulence::GroundTurbulence(const GroundTurbulenceParams& params, std::uint64_t scenario_seed)
-    : params_(validated(params)),
+GroundTurbulence::GroundTurbulence(const GroundTurbulenceParams& params,
+                                   std::uint64_t scenario_seed)
+    : params_(model::validated(params)),
       noise_(scenario_seed, salt::kGroundTurbulence),
       force_(params_.correlation_time_s, noise_),
       torque_(params_.correlation_time_s, noise_) {}
@@ -68,15 +60,16 @@ Wrench GroundTurbulence::wrench(const ContributionContext& ctx) noexcept {
 
 std::vector<model::FieldError> WindParams::validate() const {
   std::vector<model::FieldError> out;
-  detail::FieldCheck c(out);
+  model::FieldChecker c(out);
+  using enum model::LowerBound;
   c.finite("mean_W_mps", mean_W_mps, "m/s");
   c.nonNegative("gust_std_mps", gust_std_mps, "m/s");
-  c.range("gust_correlation_time_s", gust_correlation_time_s, 0.0, 1e4, false, "s");
+  c.range("gust_correlation_time_s", gust_correlation_time_s, 0.0, 1e4, kExclusive, "s");
   return out;
 }
 
 Wind::Wind(const WindParams& params, std::uint64_t scenario_seed)
-    : params_(validated(params)),
+    : params_(model::validated(params)),
       noise_(scenario_seed, salt::kWind),
       gust_(params_.gust_correlation_time_s, noise_),
       wind_W_(params_.mean_W_mps + params_.gust_std_mps.cwiseProduct(gust_.value())) {}

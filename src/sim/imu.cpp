@@ -4,39 +4,31 @@
 #include <cmath>
 #include <utility>
 
-#include "field_check.hpp"
+#include "geaware/model/field_check.hpp"
 #include "geaware/model/vehicle_model.hpp"
 
 namespace geaware::sim {
-namespace {
-
-const ImuParams& validated(const ImuParams& p) {
-  auto errors = p.validate();
-  if (!errors.empty()) throw model::InvalidParameters(std::move(errors));
-  return p;
-}
-
-}  // namespace
 
 std::vector<model::FieldError> ImuParams::validate() const {
   std::vector<model::FieldError> out;
-  detail::FieldCheck c(out);
-  c.range("rate_Hz", rate_Hz, 0.0, 1e5, false, "Hz");
+  model::FieldChecker c(out);
+  using enum model::LowerBound;
+  c.range("rate_Hz", rate_Hz, 0.0, 1e5, kExclusive, "Hz");
   c.nonNegative("gyro_noise_density_rad_per_s_sqrtHz", gyro_noise_density_rad_per_s_sqrtHz, "rad/s/√Hz");
   c.nonNegative("gyro_bias_walk_rad_per_s2_sqrtHz", gyro_bias_walk_rad_per_s2_sqrtHz, "rad/s²/√Hz");
   c.nonNegative("gyro_initial_bias_std_rad_per_s", gyro_initial_bias_std_rad_per_s, "rad/s");
   c.nonNegative("accel_noise_density_m_per_s2_sqrtHz", accel_noise_density_m_per_s2_sqrtHz, "m/s²/√Hz");
   c.nonNegative("accel_bias_walk_m_per_s3_sqrtHz", accel_bias_walk_m_per_s3_sqrtHz, "m/s³/√Hz");
   c.nonNegative("accel_initial_bias_std_m_per_s2", accel_initial_bias_std_m_per_s2, "m/s²");
-  c.range("gyro_range_rad_per_s", gyro_range_rad_per_s, 0.0, 1e4, false, "rad/s");
-  c.range("accel_range_m_per_s2", accel_range_m_per_s2, 0.0, 1e5, false, "m/s²");
+  c.range("gyro_range_rad_per_s", gyro_range_rad_per_s, 0.0, 1e4, kExclusive, "rad/s");
+  c.range("accel_range_m_per_s2", accel_range_m_per_s2, 0.0, 1e5, kExclusive, "m/s²");
   c.finite("lever_arm_B_m", lever_arm_B_m, "m");
-  c.range("gravity_mps2", gravity_mps2, 0.0, 100.0, true, "m/s²");
+  c.range("gravity_mps2", gravity_mps2, 0.0, 100.0, kInclusive, "m/s²");
   return out;
 }
 
 Imu::Imu(const ImuParams& params, std::uint64_t scenario_seed)
-    : params_(validated(params)),
+    : params_(model::validated(params)),
       noise_(scenario_seed, salt::kImu),
       clock_(params_.rate_Hz),
       gyro_white_std_(params_.gyro_noise_density_rad_per_s_sqrtHz * std::sqrt(params_.rate_Hz)),

@@ -6,42 +6,37 @@
 
 #include <Eigen/Geometry>
 
-#include "field_check.hpp"
+#include "geaware/model/field_check.hpp"
 #include "geaware/model/vehicle_model.hpp"
 
 namespace geaware::sim {
-namespace {
 
-const MocapParams& validated(const MocapParams& p) {
-  auto errors = p.validate();
-  if (!errors.empty()) throw model::InvalidParameters(std::move(errors));
-  return p;
-}
-
-}  // namespace
+using model::formatValue;
 
 std::vector<model::FieldError> MocapParams::validate() const {
   std::vector<model::FieldError> out;
-  detail::FieldCheck c(out);
-  c.range("rate_Hz", rate_Hz, 0.0, 1e4, false, "Hz");
-  c.range("latency_s", latency_s, 0.0, 1.0, true, "s");
+  model::FieldChecker c(out);
+  using enum model::LowerBound;
+  c.range("rate_Hz", rate_Hz, 0.0, 1e4, kExclusive, "Hz");
+  c.range("latency_s", latency_s, 0.0, 1.0, kInclusive, "s");
   if (std::isfinite(rate_Hz) && rate_Hz > 0.0 && std::isfinite(latency_s) &&
       latency_s * rate_Hz + 2.0 > Mocap::kQueueCapacity) {
-    c.fail("latency_s", detail::show(latency_s),
-           "latency_s·rate_Hz + 2 ≤ " + std::to_string(Mocap::kQueueCapacity) + " (poses in flight)");
+    c.fail(
+        "latency_s", formatValue(latency_s),
+        "latency_s·rate_Hz + 2 ≤ " + std::to_string(Mocap::kQueueCapacity) + " (poses in flight)");
   }
   c.nonNegative("position_noise_std_m", position_noise_std_m, "m");
-  c.range("attitude_noise_std_rad", attitude_noise_std_rad, 0.0, 0.5, true, "rad");
-  c.range("dropout_probability", dropout_probability, 0.0, 1.0, true, "");
-  c.range("burst_probability", burst_probability, 0.0, 1.0, true, "");
-  if (burst_length_samples < 1) {
-    c.fail("burst_length_samples", std::to_string(burst_length_samples), "an integer ≥ 1");
-  }
+  c.range("attitude_noise_std_rad", attitude_noise_std_rad, 0.0, 0.5, kInclusive, "rad");
+  c.range("dropout_probability", dropout_probability, 0.0, 1.0, kInclusive);
+  c.range("burst_probability", burst_probability, 0.0, 1.0, kInclusive);
+  c.integerAtLeast("burst_length_samples", burst_length_samples, 1);
   return out;
 }
 
 Mocap::Mocap(const MocapParams& params, std::uint64_t scenario_seed)
-    : params_(validated(params)), noise_(scenario_seed, salt::kMocap), clock_(params_.rate_Hz) {}
+    : params_(model::validated(params)),
+      noise_(scenario_seed, salt::kMocap),
+      clock_(params_.rate_Hz) {}
 
 void Mocap::capture(const PlantState& s) noexcept {
   ++captured_;

@@ -5,45 +5,38 @@
 #include <string>
 #include <utility>
 
-#include "field_check.hpp"
+#include "geaware/model/field_check.hpp"
 #include "geaware/model/vehicle_model.hpp"
 #include "geaware/sim/terrains.hpp"
 
 namespace geaware::sim {
-namespace {
 
-const RangerParams& validated(const RangerParams& p) {
-  auto errors = p.validate();
-  if (!errors.empty()) throw model::InvalidParameters(std::move(errors));
-  return p;
-}
-
-}  // namespace
+using model::formatValue;
 
 std::vector<model::FieldError> RangerParams::validate() const {
   std::vector<model::FieldError> out;
-  detail::FieldCheck c(out);
-  c.range("rate_Hz", rate_Hz, 0.0, 1e4, false, "Hz");
-  if (side < 1 || side > model::RangerFrame::kMaxSide) {
-    c.fail("side", std::to_string(side), "an integer in [1, " + std::to_string(model::RangerFrame::kMaxSide) + "]");
-  }
+  model::FieldChecker c(out);
+  using enum model::LowerBound;
+  c.range("rate_Hz", rate_Hz, 0.0, 1e4, kExclusive, "Hz");
+  c.integerRange("side", side, 1, model::RangerFrame::kMaxSide);
   // Below π the outermost zones (at ±fov/2·(1 − 1/N)) stay short of the horizon.
-  c.range("fov_rad", fov_rad, 0.0, std::numbers::pi * 0.9, false, "rad");
+  c.range("fov_rad", fov_rad, 0.0, std::numbers::pi * 0.9, kExclusive, "rad");
   c.finite("mount_B", mount_B, "m");
   c.nonNegative("min_range_m", min_range_m, "m");
-  c.range("max_range_m", max_range_m, 0.0, 1e3, false, "m");
+  c.range("max_range_m", max_range_m, 0.0, 1e3, kExclusive, "m");
   if (std::isfinite(min_range_m) && std::isfinite(max_range_m) && min_range_m >= max_range_m) {
-    c.fail("min_range_m", detail::show(min_range_m), "less than max_range_m = " + detail::show(max_range_m));
+    c.fail("min_range_m", formatValue(min_range_m),
+           "less than max_range_m = " + formatValue(max_range_m));
   }
-  c.range("max_incidence_rad", max_incidence_rad, 0.0, std::numbers::pi / 2.0, true, "rad");
+  c.range("max_incidence_rad", max_incidence_rad, 0.0, std::numbers::pi / 2.0, kInclusive, "rad");
   c.nonNegative("noise_floor_m", noise_floor_m, "m");
-  c.nonNegative("noise_fraction", noise_fraction, "");
-  c.range("outlier_probability", outlier_probability, 0.0, 1.0, true, "");
+  c.nonNegative("noise_fraction", noise_fraction);
+  c.range("outlier_probability", outlier_probability, 0.0, 1.0, kInclusive);
   return out;
 }
 
 LatticeRanger::LatticeRanger(const RangerParams& params, std::uint64_t scenario_seed)
-    : params_(validated(params)),
+    : params_(model::validated(params)),
       noise_(scenario_seed, salt::kRanger),
       clock_(params_.rate_Hz),
       min_cos_incidence_(std::cos(params_.max_incidence_rad)) {

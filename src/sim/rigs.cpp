@@ -9,6 +9,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "geaware/model/field_check.hpp"
 #include "geaware/model/mixer.hpp"
 #include "geaware/model/motor.hpp"
 #include "geaware/model/units.hpp"
@@ -16,19 +17,10 @@
 namespace geaware::sim {
 namespace {
 
-std::string show(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
+// The rigs print values with 6 significant digits, in their parameter errors and sweep errors.
+constexpr int kDigits = 6;
 
-void checkRange(std::vector<model::FieldError>& out, const std::string& field, double v, double lo,
-                double hi, const char* unit) {
-  if (!(std::isfinite(v) && v >= lo && v <= hi)) {
-    out.push_back(
-        {field, show(v), "a finite number in [" + show(lo) + ", " + show(hi) + "] " + unit});
-  }
-}
+std::string show(double v) { return model::formatValue(v, kDigits); }
 
 [[noreturn]] void throwErrors(const char* what, const std::vector<model::FieldError>& errors) {
   std::string msg = std::string(what) + ": invalid parameters:";
@@ -85,14 +77,13 @@ RotorGeometry rigGeometry(const model::VehicleParams& vehicle) {
 
 std::vector<model::FieldError> PlatformParams::validate() const {
   std::vector<model::FieldError> e;
-  checkRange(e, "platform.force_noise_N", force_noise_N, 0.0, 1e3, "N");
-  checkRange(e, "platform.torque_noise_Nm", torque_noise_Nm, 0.0, 1e3, "N·m");
-  if (samples_per_setpoint < 1 || samples_per_setpoint > 1'000'000) {
-    e.push_back({"platform.samples_per_setpoint", std::to_string(samples_per_setpoint),
-                 "an integer in [1, 1000000]"});
-  }
-  checkRange(e, "platform.sample_period_s", sample_period_s, 1e-6, 100.0, "s");
-  checkRange(e, "platform.settle_time_s", settle_time_s, 0.0, 1e4, "s");
+  model::FieldChecker c(e, kDigits);
+  using enum model::LowerBound;
+  c.range("platform.force_noise_N", force_noise_N, 0.0, 1e3, kInclusive, "N");
+  c.range("platform.torque_noise_Nm", torque_noise_Nm, 0.0, 1e3, kInclusive, "N·m");
+  c.integerRange("platform.samples_per_setpoint", samples_per_setpoint, 1, 1'000'000);
+  c.range("platform.sample_period_s", sample_period_s, 1e-6, 100.0, kInclusive, "s");
+  c.range("platform.settle_time_s", settle_time_s, 0.0, 1e4, kInclusive, "s");
   return e;
 }
 
@@ -211,14 +202,15 @@ std::size_t ForceTorquePlatform::sweep(
 
 std::vector<model::FieldError> RotorStandParams::validate() const {
   std::vector<model::FieldError> e;
-  checkRange(e, "stand.thrust_noise_N", thrust_noise_N, 0.0, 1e3, "N");
-  checkRange(e, "stand.torque_noise_Nm", torque_noise_Nm, 0.0, 1e3, "N·m");
-  checkRange(e, "stand.rpm_noise", rpm_noise, 0.0, 1e5, "rpm");
-  checkRange(e, "stand.motor_time_constant_s", motor_time_constant_s, 1e-5, 10.0, "s");
-  checkRange(e, "stand.sample_period_s", sample_period_s, 1e-6, 100.0, "s");
-  checkRange(e, "stand.hold_s", hold_s, 1e-6, 1e5, "s");
-  if (hold_s < sample_period_s)
-    e.push_back({"stand.hold_s", show(hold_s), "≥ stand.sample_period_s"});
+  model::FieldChecker c(e, kDigits);
+  using enum model::LowerBound;
+  c.range("stand.thrust_noise_N", thrust_noise_N, 0.0, 1e3, kInclusive, "N");
+  c.range("stand.torque_noise_Nm", torque_noise_Nm, 0.0, 1e3, kInclusive, "N·m");
+  c.range("stand.rpm_noise", rpm_noise, 0.0, 1e5, kInclusive, "rpm");
+  c.range("stand.motor_time_constant_s", motor_time_constant_s, 1e-5, 10.0, kInclusive, "s");
+  c.range("stand.sample_period_s", sample_period_s, 1e-6, 100.0, kInclusive, "s");
+  c.range("stand.hold_s", hold_s, 1e-6, 1e5, kInclusive, "s");
+  if (hold_s < sample_period_s) c.fail("stand.hold_s", show(hold_s), "≥ stand.sample_period_s");
   return e;
 }
 

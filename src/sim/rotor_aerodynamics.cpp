@@ -7,53 +7,44 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 #include <string>
 
+#include "geaware/model/field_check.hpp"
+
 namespace geaware::sim {
-namespace {
 
-std::string show(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
-}
-
-void checkRange(std::vector<model::FieldError>& out, const char* field, double v, double lo,
-                double hi, const char* unit) {
-  if (!(std::isfinite(v) && v >= lo && v <= hi)) {
-    out.push_back({std::string("aero.") + field, show(v),
-                   "a finite number in [" + show(lo) + ", " + show(hi) + "] " + unit});
-  }
-}
-
-}  // namespace
+using model::formatValue;
 
 std::vector<model::FieldError> RotorAeroParams::validate() const {
   std::vector<model::FieldError> e;
-  checkRange(e, "body_coefficient", body_coefficient, 0.0, 20.0, "[-]");
-  checkRange(e, "image_core_fraction", image_core_fraction, 1e-3, 10.0, "[-]");
-  checkRange(e, "impingement_slope_per_m", impingement_slope_per_m, 0.0, 100.0, "1/m");
-  checkRange(e, "wake_merge_height_m", wake_merge_height_m, 0.0, 10.0, "m");
-  checkRange(e, "wake_merge_softness_m", wake_merge_softness_m, 1e-6, 1.0, "m");
-  checkRange(e, "recirculation_height_m", recirculation_height_m, 0.0, 1.0, "m");
-  checkRange(e, "suckdown_gain", suckdown_gain, 0.0, 100.0, "[-]");
-  checkRange(e, "redistribution_cap_per_m", redistribution_cap_per_m, 1e-6, 100.0, "1/m");
-  checkRange(e, "own_thrust_fraction", own_thrust_fraction, 0.0, 1.0, "[-]");
-  checkRange(e, "reaction_torque_reduction", reaction_torque_reduction, 0.0, 1.0, "[-]");
-  checkRange(e, "ground_effect_range_m", ground_effect_range_m, 0.1, 1000.0, "m");
-  checkRange(e, "min_ground_distance_m", min_ground_distance_m, 1e-4, 0.1, "m");
-  checkRange(e, "induced_velocity_mps", induced_velocity_mps, 0.1, 100.0, "m/s");
-  checkRange(e, "induced_velocity_ref_rpm", induced_velocity_ref_rpm, 1.0, 1e6, "rpm");
-  checkRange(e, "drag_x_N_per_mps_per_rpm", drag_x_N_per_mps_per_rpm, 0.0, 1e-2, "N/(m/s)/rpm");
-  checkRange(e, "drag_y_N_per_mps_per_rpm", drag_y_N_per_mps_per_rpm, 0.0, 1e-2, "N/(m/s)/rpm");
-  checkRange(e, "drag_ground_reduction_x", drag_ground_reduction_x, 0.0, 0.99, "[-]");
-  checkRange(e, "drag_ground_reduction_y", drag_ground_reduction_y, 0.0, 0.99, "[-]");
-  checkRange(e, "drag_ground_height_m", drag_ground_height_m, 1e-3, 10.0, "m");
+  model::FieldChecker c(e);
+  using enum model::LowerBound;
+  c.range("aero.body_coefficient", body_coefficient, 0.0, 20.0, kInclusive, "[-]");
+  c.range("aero.image_core_fraction", image_core_fraction, 1e-3, 10.0, kInclusive, "[-]");
+  c.range("aero.impingement_slope_per_m", impingement_slope_per_m, 0.0, 100.0, kInclusive, "1/m");
+  c.range("aero.wake_merge_height_m", wake_merge_height_m, 0.0, 10.0, kInclusive, "m");
+  c.range("aero.wake_merge_softness_m", wake_merge_softness_m, 1e-6, 1.0, kInclusive, "m");
+  c.range("aero.recirculation_height_m", recirculation_height_m, 0.0, 1.0, kInclusive, "m");
+  c.range("aero.suckdown_gain", suckdown_gain, 0.0, 100.0, kInclusive, "[-]");
+  c.range("aero.redistribution_cap_per_m", redistribution_cap_per_m, 1e-6, 100.0, kInclusive,
+          "1/m");
+  c.range("aero.own_thrust_fraction", own_thrust_fraction, 0.0, 1.0, kInclusive, "[-]");
+  c.range("aero.reaction_torque_reduction", reaction_torque_reduction, 0.0, 1.0, kInclusive, "[-]");
+  c.range("aero.ground_effect_range_m", ground_effect_range_m, 0.1, 1000.0, kInclusive, "m");
+  c.range("aero.min_ground_distance_m", min_ground_distance_m, 1e-4, 0.1, kInclusive, "m");
+  c.range("aero.induced_velocity_mps", induced_velocity_mps, 0.1, 100.0, kInclusive, "m/s");
+  c.range("aero.induced_velocity_ref_rpm", induced_velocity_ref_rpm, 1.0, 1e6, kInclusive, "rpm");
+  c.range("aero.drag_x_N_per_mps_per_rpm", drag_x_N_per_mps_per_rpm, 0.0, 1e-2, kInclusive,
+          "N/(m/s)/rpm");
+  c.range("aero.drag_y_N_per_mps_per_rpm", drag_y_N_per_mps_per_rpm, 0.0, 1e-2, kInclusive,
+          "N/(m/s)/rpm");
+  c.range("aero.drag_ground_reduction_x", drag_ground_reduction_x, 0.0, 0.99, kInclusive, "[-]");
+  c.range("aero.drag_ground_reduction_y", drag_ground_reduction_y, 0.0, 0.99, kInclusive, "[-]");
+  c.range("aero.drag_ground_height_m", drag_ground_height_m, 1e-3, 10.0, kInclusive, "m");
   if (min_ground_distance_m >= ground_effect_range_m) {
-    e.push_back({"aero.min_ground_distance_m", show(min_ground_distance_m),
-                 "less than aero.ground_effect_range_m"});
+    c.fail("aero.min_ground_distance_m", formatValue(min_ground_distance_m),
+           "less than aero.ground_effect_range_m");
   }
   return e;
 }
@@ -62,7 +53,8 @@ RotorAerodynamics::RotorAerodynamics(const RotorGeometry& geometry, const RotorA
     : geometry_(geometry), params_(params) {
   std::vector<model::FieldError> errors = params.validate();
   if (!(std::isfinite(geometry.radius_m) && geometry.radius_m > 0.0)) {
-    errors.push_back({"geometry.radius_m", show(geometry.radius_m), "a finite radius > 0 m"});
+    errors.push_back(
+        {"geometry.radius_m", formatValue(geometry.radius_m), "a finite radius > 0 m"});
   }
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   for (std::size_t i = 0; i < 4; ++i) {
@@ -72,15 +64,15 @@ RotorAerodynamics::RotorAerodynamics(const RotorGeometry& geometry, const RotorA
           {"geometry.position_B[" + idx + "]", "non-finite", "finite coordinates [m]"});
     }
     if (!(std::isfinite(geometry.k_T_N_per_rpm2[i]) && geometry.k_T_N_per_rpm2[i] >= 0.0)) {
-      errors.push_back({"geometry.k_T_N_per_rpm2[" + idx + "]", show(geometry.k_T_N_per_rpm2[i]),
-                        "finite, ≥ 0"});
+      errors.push_back({"geometry.k_T_N_per_rpm2[" + idx + "]",
+                        formatValue(geometry.k_T_N_per_rpm2[i]), "finite, ≥ 0"});
     }
     if (!(std::isfinite(geometry.k_I_Nm_per_rpm2[i]) && geometry.k_I_Nm_per_rpm2[i] >= 0.0)) {
-      errors.push_back({"geometry.k_I_Nm_per_rpm2[" + idx + "]", show(geometry.k_I_Nm_per_rpm2[i]),
-                        "finite, ≥ 0"});
+      errors.push_back({"geometry.k_I_Nm_per_rpm2[" + idx + "]",
+                        formatValue(geometry.k_I_Nm_per_rpm2[i]), "finite, ≥ 0"});
     }
     if (!(geometry.spin[i] == 1.0 || geometry.spin[i] == -1.0)) {
-      errors.push_back({"geometry.spin[" + idx + "]", show(geometry.spin[i]), "+1 or −1"});
+      errors.push_back({"geometry.spin[" + idx + "]", formatValue(geometry.spin[i]), "+1 or −1"});
     }
     centre += geometry.position_B[i] / 4.0;
   }
@@ -90,7 +82,7 @@ RotorAerodynamics::RotorAerodynamics(const RotorGeometry& geometry, const RotorA
   for (std::size_t i = 0; i < 4; ++i)
     arm += (geometry.position_B[i] - centre).head<2>().norm() / 4.0;
   if (!(std::isfinite(arm) && arm > geometry.radius_m * 0.5)) {
-    errors.push_back({"geometry.position_B", "mean arm " + show(arm) + " m",
+    errors.push_back({"geometry.position_B", "mean arm " + formatValue(arm) + " m",
                       "rotors spread wider than half a propeller radius"});
   }
   if (!errors.empty()) {

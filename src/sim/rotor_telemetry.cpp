@@ -3,31 +3,26 @@
 #include <cmath>
 #include <utility>
 
-#include "field_check.hpp"
+#include "geaware/model/field_check.hpp"
 #include "geaware/model/vehicle_model.hpp"
 
 namespace geaware::sim {
-namespace {
-
-const RotorTelemetryParams& validated(const RotorTelemetryParams& p) {
-  auto errors = p.validate();
-  if (!errors.empty()) throw model::InvalidParameters(std::move(errors));
-  return p;
-}
-
-}  // namespace
 
 std::vector<model::FieldError> RotorTelemetryParams::validate() const {
   std::vector<model::FieldError> out;
-  detail::FieldCheck c(out);
-  c.range("rate_Hz", rate_Hz, 0.0, 1e5, false, "Hz");
+  model::FieldChecker c(out);
+  using enum model::LowerBound;
+  c.range("rate_Hz", rate_Hz, 0.0, 1e5, kExclusive, "Hz");
   c.nonNegative("noise_std_rpm", noise_std_rpm, "rpm");
-  c.range("resolution_rpm", resolution_rpm, 0.0, 1e4, true, "rpm");
+  c.range("resolution_rpm", resolution_rpm, 0.0, 1e4, kInclusive, "rpm");
   return out;
 }
 
-RotorTelemetrySensor::RotorTelemetrySensor(const RotorTelemetryParams& params, std::uint64_t scenario_seed)
-    : params_(validated(params)), noise_(scenario_seed, salt::kRotorTelemetry), clock_(params_.rate_Hz) {}
+RotorTelemetrySensor::RotorTelemetrySensor(const RotorTelemetryParams& params,
+                                           std::uint64_t scenario_seed)
+    : params_(model::validated(params)),
+      noise_(scenario_seed, salt::kRotorTelemetry),
+      clock_(params_.rate_Hz) {}
 
 std::optional<model::RotorTelemetry> RotorTelemetrySensor::sample(const PlantState& s) noexcept {
   if (!isFinite(s)) {

@@ -15,12 +15,6 @@ void appendPrefixed(std::vector<model::FieldError>& out, const char* prefix, std
   }
 }
 
-const SensorSuiteParams& validated(const SensorSuiteParams& p) {
-  auto errors = p.validate();
-  if (!errors.empty()) throw model::InvalidParameters(std::move(errors));
-  return p;
-}
-
 }  // namespace
 
 std::vector<model::FieldError> SensorSuiteParams::validate() const {
@@ -33,7 +27,7 @@ std::vector<model::FieldError> SensorSuiteParams::validate() const {
 }
 
 SensorSuite::SensorSuite(const SensorSuiteParams& params, std::uint64_t scenario_seed)
-    : imu_(validated(params).imu, scenario_seed),
+    : imu_(model::validated(params).imu, scenario_seed),
       mocap_(params.mocap, scenario_seed),
       rotors_(params.rotor_telemetry, scenario_seed),
       ranger_(params.ranger, scenario_seed) {}

@@ -1,53 +1,18 @@
 #include "geaware/sim/truth_params.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <random>
 #include <string>
 
 #include <Eigen/Eigenvalues>
 
+#include "geaware/model/field_check.hpp"
 #include "geaware/model/mixer.hpp"
 #include "geaware/model/units.hpp"
 
 namespace geaware::sim {
-namespace {
 
-std::string show(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
-}
-
-/// Collects errors, naming the field as a key path (the shape of model::VehicleParams::validate).
-class Checker {
- public:
-  explicit Checker(std::vector<model::FieldError>& out) : out_(out) {}
-  bool range(const std::string& field, double v, double lo, double hi, bool lo_inclusive,
-             const char* unit) {
-    const bool ok = std::isfinite(v) && (lo_inclusive ? v >= lo : v > lo) && v <= hi;
-    if (!ok) {
-      out_.push_back({field, show(v),
-                      std::string("a finite number in ") + (lo_inclusive ? "[" : "(") + show(lo) +
-                          ", " + show(hi) + "] " + unit});
-    }
-    return ok;
-  }
-  bool finite(const std::string& field, const Eigen::Vector3d& v, double bound, const char* unit) {
-    bool ok = true;
-    const char* axis[3] = {".x", ".y", ".z"};
-    for (int k = 0; k < 3; ++k) ok &= range(field + axis[k], v[k], -bound, bound, true, unit);
-    return ok;
-  }
-  void fail(const std::string& field, const std::string& value, const std::string& expected) {
-    out_.push_back({field, value, expected});
-  }
-
- private:
-  std::vector<model::FieldError>& out_;
-};
-
-}  // namespace
+using model::formatValue;
 
 RotorGeometry TruthParams::rotorGeometry() const {
   RotorGeometry g;
@@ -65,8 +30,10 @@ RotorGeometry TruthParams::rotorGeometry() const {
 
 std::vector<model::FieldError> TruthParams::validate() const {
   std::vector<model::FieldError> errors;
-  Checker c(errors);
-  c.range("mass_kg", mass_kg, 0.0, 1000.0, false, "kg");
+  // Key paths in the shape of model::VehicleParams::validate.
+  model::FieldChecker c(errors);
+  using enum model::LowerBound;
+  c.range("mass_kg", mass_kg, 0.0, 1000.0, kExclusive, "kg");
 
   // Inertia: finite, symmetric, positive definite, principal moments satisfying the triangle
   // inequalities (no rigid body has other moments).
@@ -74,7 +41,7 @@ std::vector<model::FieldError> TruthParams::validate() const {
   for (int r = 0; r < 3; ++r) {
     for (int k = 0; k < 3; ++k) {
       j_finite &= c.range("inertia_kgm2(" + std::to_string(r) + "," + std::to_string(k) + ")",
-                          inertia_kgm2(r, k), -1000.0, 1000.0, true, "kg·m²");
+                          inertia_kgm2(r, k), -1000.0, 1000.0, kInclusive, "kg·m²");
     }
   }
   if (j_finite) {
@@ -84,64 +51,70 @@ std::vector<model::FieldError> TruthParams::validate() const {
       const Eigen::Vector3d ev =
           Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia_kgm2).eigenvalues();
       if (!(ev.minCoeff() > 0.0)) {
-        c.fail("inertia_kgm2", "smallest principal moment " + show(ev.minCoeff()),
+        c.fail("inertia_kgm2", "smallest principal moment " + formatValue(ev.minCoeff()),
                "positive definite");
       } else if (ev[2] > (ev[0] + ev[1]) * (1.0 + 1e-9)) {
         c.fail("inertia_kgm2",
-               "principal moments " + show(ev[0]) + ", " + show(ev[1]) + ", " + show(ev[2]),
+               "principal moments " + formatValue(ev[0]) + ", " + formatValue(ev[1]) + ", " +
+                   formatValue(ev[2]),
                "the largest at most the sum of the other two");
       }
     }
   }
 
-  c.finite("cog_offset_B", cog_offset_B, 1.0, "m");
+  c.componentsWithin("cog_offset_B", cog_offset_B, 1.0, "m");
   for (std::size_t i = 0; i < 4; ++i) {
     const std::string idx = "[" + std::to_string(i) + "]";
-    c.finite("rotor_position_B" + idx, rotor_position_B[i], 10.0, "m");
+    c.componentsWithin("rotor_position_B" + idx, rotor_position_B[i], 10.0, "m");
     if (!(yaw_sign[i] == 1.0 || yaw_sign[i] == -1.0))
-      c.fail("yaw_sign" + idx, show(yaw_sign[i]), "+1 or -1");
-    c.range("thrust_multiplier" + idx, thrust_multiplier[i], 0.5, 1.5, true, "(relative to k_T)");
+      c.fail("yaw_sign" + idx, formatValue(yaw_sign[i]), "+1 or -1");
+    c.range("thrust_multiplier" + idx, thrust_multiplier[i], 0.5, 1.5, kInclusive,
+            "(relative to k_T)");
   }
-  c.range("propeller_radius_m", propeller_radius_m, 0.0, 5.0, false, "m");
-  c.range("k_T_N_per_rpm2", k_T_N_per_rpm2, 0.0, 1.0, false, "N/rpm²");
-  c.range("k_I_Nm_per_rpm2", k_I_Nm_per_rpm2, 0.0, 1.0, true, "N·m/rpm²");
-  c.range("gravity_mps2", gravity_mps2, 0.0, 100.0, true, "m/s²");
+  c.range("propeller_radius_m", propeller_radius_m, 0.0, 5.0, kExclusive, "m");
+  c.range("k_T_N_per_rpm2", k_T_N_per_rpm2, 0.0, 1.0, kExclusive, "N/rpm²");
+  c.range("k_I_Nm_per_rpm2", k_I_Nm_per_rpm2, 0.0, 1.0, kInclusive, "N·m/rpm²");
+  c.range("gravity_mps2", gravity_mps2, 0.0, 100.0, kInclusive, "m/s²");
 
-  c.range("motor.time_constant_s", motor.time_constant_s, 0.0, 10.0, false, "s");
-  c.range("motor.J_R_kgm2", motor.J_R_kgm2, 0.0, 1.0, true, "kg·m²");
-  const bool lo_ok = c.range("motor.min_speed_rpm", motor.min_speed_rpm, 0.0, 1e6, true, "rpm");
-  const bool hi_ok = c.range("motor.max_speed_rpm", motor.max_speed_rpm, 0.0, 1e6, false, "rpm");
+  c.range("motor.time_constant_s", motor.time_constant_s, 0.0, 10.0, kExclusive, "s");
+  c.range("motor.J_R_kgm2", motor.J_R_kgm2, 0.0, 1.0, kInclusive, "kg·m²");
+  const bool lo_ok =
+      c.range("motor.min_speed_rpm", motor.min_speed_rpm, 0.0, 1e6, kInclusive, "rpm");
+  const bool hi_ok =
+      c.range("motor.max_speed_rpm", motor.max_speed_rpm, 0.0, 1e6, kExclusive, "rpm");
   if (lo_ok && hi_ok && !(motor.max_speed_rpm > motor.min_speed_rpm)) {
-    c.fail("motor.max_speed_rpm", show(motor.max_speed_rpm),
-           "greater than motor.min_speed_rpm = " + show(motor.min_speed_rpm));
+    c.fail("motor.max_speed_rpm", formatValue(motor.max_speed_rpm),
+           "greater than motor.min_speed_rpm = " + formatValue(motor.min_speed_rpm));
   }
   const auto& t = motor.throttle;
-  const bool c2_ok = c.range("motor.throttle.c2_rpm2", t.c2_rpm2, -1e12, 1e12, true, "rpm²");
-  const bool c1_ok = c.range("motor.throttle.c1_rpm2", t.c1_rpm2, -1e12, 1e12, true, "rpm²");
-  const bool c0_ok = c.range("motor.throttle.c0_rpm2", t.c0_rpm2, 0.0, 1e12, true, "rpm²");
+  const bool c2_ok = c.range("motor.throttle.c2_rpm2", t.c2_rpm2, -1e12, 1e12, kInclusive, "rpm²");
+  const bool c1_ok = c.range("motor.throttle.c1_rpm2", t.c1_rpm2, -1e12, 1e12, kInclusive, "rpm²");
+  const bool c0_ok = c.range("motor.throttle.c0_rpm2", t.c0_rpm2, 0.0, 1e12, kInclusive, "rpm²");
   if (c2_ok && c1_ok && c0_ok && !(t.c1_rpm2 > 0.0 && t.c1_rpm2 + 2.0 * t.c2_rpm2 > 0.0)) {
-    c.fail("motor.throttle", "c1=" + show(t.c1_rpm2) + ", c2=" + show(t.c2_rpm2),
+    c.fail("motor.throttle", "c1=" + formatValue(t.c1_rpm2) + ", c2=" + formatValue(t.c2_rpm2),
            "n² strictly increasing on throttle [0, 1] (c1 > 0 and c1 + 2·c2 > 0)");
   }
 
   const auto& b = battery;
-  const bool vf_ok = c.range("battery.full_voltage_V", b.full_voltage_V, 0.0, 1000.0, false, "V");
-  const bool ve_ok = c.range("battery.empty_voltage_V", b.empty_voltage_V, 0.0, 1000.0, false, "V");
+  const bool vf_ok =
+      c.range("battery.full_voltage_V", b.full_voltage_V, 0.0, 1000.0, kExclusive, "V");
+  const bool ve_ok =
+      c.range("battery.empty_voltage_V", b.empty_voltage_V, 0.0, 1000.0, kExclusive, "V");
   if (vf_ok && ve_ok && !(b.empty_voltage_V < b.full_voltage_V)) {
-    c.fail("battery.empty_voltage_V", show(b.empty_voltage_V),
-           "below battery.full_voltage_V = " + show(b.full_voltage_V));
+    c.fail("battery.empty_voltage_V", formatValue(b.empty_voltage_V),
+           "below battery.full_voltage_V = " + formatValue(b.full_voltage_V));
   }
-  c.range("battery.nominal_voltage_V", b.nominal_voltage_V, 0.0, 1000.0, false, "V");
-  c.range("battery.internal_resistance_ohm", b.internal_resistance_ohm, 0.0, 10.0, true, "Ω");
-  const bool cap_ok = c.range("battery.capacity_Ah", b.capacity_Ah, 0.0, 1000.0, false, "A·h");
+  c.range("battery.nominal_voltage_V", b.nominal_voltage_V, 0.0, 1000.0, kExclusive, "V");
+  c.range("battery.internal_resistance_ohm", b.internal_resistance_ohm, 0.0, 10.0, kInclusive, "Ω");
+  const bool cap_ok = c.range("battery.capacity_Ah", b.capacity_Ah, 0.0, 1000.0, kExclusive, "A·h");
   if (cap_ok)
-    c.range("battery.initial_charge_used_Ah", b.initial_charge_used_Ah, 0.0, b.capacity_Ah, true,
-            "A·h");
-  c.range("battery.efficiency", b.efficiency, 0.0, 1.0, false, "");
-  c.range("battery.idle_current_A", b.idle_current_A, 0.0, 1000.0, true, "A");
+    c.range("battery.initial_charge_used_Ah", b.initial_charge_used_Ah, 0.0, b.capacity_Ah,
+            kInclusive, "A·h");
+  c.range("battery.efficiency", b.efficiency, 0.0, 1.0, kExclusive);
+  c.range("battery.idle_current_A", b.idle_current_A, 0.0, 1000.0, kInclusive, "A");
 
   for (std::size_t i = 0; i < landing_feet_B.size(); ++i) {
-    c.finite("landing_feet_B[" + std::to_string(i) + "]", landing_feet_B[i], 10.0, "m");
+    c.componentsWithin("landing_feet_B[" + std::to_string(i) + "]", landing_feet_B[i], 10.0, "m");
   }
   return errors;
 }

@@ -5,6 +5,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "geaware/model/ground_effect.hpp"
@@ -24,6 +25,15 @@ class InvalidParameters : public std::invalid_argument {
  private:
   std::vector<FieldError> errors_;
 };
+
+/// `params` itself when `params.validate()` finds nothing; otherwise throws InvalidParameters
+/// listing every offending field. For initialiser lists: `params_(model::validated(params))`.
+template <typename Params>
+const Params& validated(const Params& params) {
+  auto errors = params.validate();
+  if (!errors.empty()) throw InvalidParameters(std::move(errors));
+  return params;
+}
 
 class VehicleModel {
  public:
