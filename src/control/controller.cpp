@@ -74,6 +74,8 @@ Controller::Controller(const model::VehicleModel& vehicle, ControllerParams para
       mixer_(vehicle.mixer()),
       throttle_curve_(vehicle.throttleCurve()),
       k_T_N_per_rpm2_(vehicle.params().rotor.k_T_N_per_rpm2),
+      k_I_Nm_per_rpm2_(vehicle.params().rotor.k_I_Nm_per_rpm2),
+      J_R_kgm2_(vehicle.params().rotor.J_R_kgm2),
       reference_map_(vehicle, referenceTerms(params_)),
       dt_s_(1.0 / params_.rate_hz),
       w_filter_(params_.filter_cutoff_hz, params_.rate_hz),
@@ -95,6 +97,9 @@ void Controller::reset() noexcept {
   have_last_w_ = false;
   thrust_pi_integral_ = 0.0;
   last_height_m_ = kFarFromGroundM;
+  have_last_n_ = false;
+  have_yaw_lag_ = false;
+  yaw_torque_lagged_Nm_ = 0.0;
 }
 
 ControllerOutput Controller::fallback(std::uint32_t flags) const noexcept {
@@ -172,7 +177,15 @@ ControllerOutput Controller::update(const ControllerInput& in) noexcept {
   have_last_w_ = true;
   const Eigen::Vector4d n_sq_meas = in.rotor_speeds_rpm.cwiseAbs2();
   const Eigen::Vector4d wrench_meas = mixer_.wrench(n_sq_meas);
-  const Eigen::Vector3d tau_hat = tau_hat_filter_.update(wrench_meas.tail<3>());
+  Eigen::Vector3d tau_meas = wrench_meas.tail<3>();
+  if (params_.compensate_rotor_inertia && have_last_n_) {
+    // Reaction torque of the accelerating rotors, J_R·ṅ (ṅ in rad/s²), with the mixer's spins.
+    const Eigen::Vector4d n_dot = (in.rotor_speeds_rpm - last_n_meas_rpm_) / dt_s_;
+    tau_meas.z() += J_R_kgm2_ * model::kRpmToRadPerSec * model::Mixer::yawSigns().dot(n_dot);
+  }
+  last_n_meas_rpm_ = in.rotor_speeds_rpm;
+  have_last_n_ = true;
+  const Eigen::Vector3d tau_hat = tau_hat_filter_.update(tau_meas);
   const Eigen::Vector3d a_meas_W = R * in.accel_B - Eigen::Vector3d(0.0, 0.0, kGravity);
   const Eigen::Vector3d a_f = accel_filter_.update(a_meas_W);
   const Eigen::Vector3d f_f = thrust_vector_filter_.update(wrench_meas(0) / mass_kg_ * z_B);
@@ -245,7 +258,20 @@ ControllerOutput Controller::update(const ControllerInput& in) noexcept {
 
   // 5. Rotor speeds and throttles: inverse throttle curve plus the shared PI correction on the
   //    thrust-acceleration error T_a^E = (Σk_T·n_des² − Σk_T·n²)/m (FACTS.md).
-  const Eigen::Vector4d n_sq_des = allocate(thrust, tau, flags);
+  // The rotors' yaw response to a steady-torque command is (1 + s·τ_R)/(1 + s·τ_motor): the
+  // J_R·ṅ lead. Lagging the command by 1/(1 + s·τ_R) (backward Euler) leaves the motor lag only.
+  Eigen::Vector3d tau_alloc = tau;
+  if (params_.compensate_rotor_inertia && J_R_kgm2_ > 0.0) {
+    const double n_mean = std::max(in.rotor_speeds_rpm.mean(), throttle_curve_.minSpeedRpm());
+    const double tau_r = J_R_kgm2_ * model::kRpmToRadPerSec / (2.0 * k_I_Nm_per_rpm2_ * n_mean);
+    if (!have_yaw_lag_) {
+      yaw_torque_lagged_Nm_ = tau.z();
+      have_yaw_lag_ = true;
+    }
+    yaw_torque_lagged_Nm_ += dt_s_ / (tau_r + dt_s_) * (tau.z() - yaw_torque_lagged_Nm_);
+    tau_alloc.z() = yaw_torque_lagged_Nm_;
+  }
+  const Eigen::Vector4d n_sq_des = allocate(thrust, tau_alloc, flags);
   const double thrust_acc_error = k_T_N_per_rpm2_ * (n_sq_des.sum() - n_sq_meas.sum()) / mass_kg_;
   const double i_limit = params_.thrust_pi_ki > 0.0 ? params_.thrust_pi_limit / params_.thrust_pi_ki : 0.0;
   thrust_pi_integral_ = std::clamp(thrust_pi_integral_ + thrust_acc_error * dt_s_, -i_limit, i_limit);
@@ -265,6 +291,7 @@ ControllerOutput Controller::update(const ControllerInput& in) noexcept {
   out.w_des_B = w_des;
   out.w_dot_des_B = w_dot_des;
   out.tau_des_B = tau;
+  out.yaw_torque_allocated_Nm = tau_alloc.z();
   out.tau_hat_B = tau_hat;
   out.height_used_m = h;
   out.flags = flags;

@@ -124,6 +124,53 @@ TEST(Controller, IncrementalInversionWithMatchingAccelerationKeepsTheMeasuredTor
   EXPECT_MATRIX_NEAR(out.tau_des_B, tau_meas, 1e-9);
 }
 
+TEST(Controller, MeasuredTorqueIncludesTheRotorInertiaReaction) {
+  // Rotors 3, 4 (spin +1) speeding up and 1, 2 (spin −1) slowing down at 2000 rpm/s each:
+  // J_R·ṅ adds 4·J_R·2000·(2π/60) N·m of yaw torque to k_I·Σs·n².
+  Controller c(paperVehicle(), paramsFor(AccelerationCompensation::kNone, TorqueCompensation::kIndi));
+  ControllerInput in = hoverInput(2.0);
+  const double rate = c.params().rate_hz;
+  const Eigen::Vector4d ramp(-2000.0, -2000.0, 2000.0, 2000.0);  // [rpm/s]
+  ControllerOutput out;
+  for (int k = 0; k < 200; ++k) {
+    in.rotor_speeds_rpm = Eigen::Vector4d::Constant(10000.0) + ramp * (k / rate);
+    out = c.update(in);
+  }
+  const auto& r = paperVehicle().params().rotor;
+  const double steady = r.k_I_Nm_per_rpm2 * geaware::model::Mixer::yawSigns().dot(in.rotor_speeds_rpm.cwiseAbs2());
+  const double inertia = r.J_R_kgm2 * geaware::model::kRpmToRadPerSec * 4.0 * 2000.0;
+  // The filter lags a ramp by a constant; compare with the filtered steady part's lag allowed.
+  EXPECT_NEAR(out.tau_hat_B.z(), steady + inertia, 0.02 * inertia);
+  // Without the compensation only k_I·n² is seen.
+  ControllerParams p = paramsFor(AccelerationCompensation::kNone, TorqueCompensation::kIndi);
+  p.compensate_rotor_inertia = false;
+  Controller plain(paperVehicle(), p);
+  for (int k = 0; k < 200; ++k) {
+    in.rotor_speeds_rpm = Eigen::Vector4d::Constant(10000.0) + ramp * (k / rate);
+    out = plain.update(in);
+  }
+  EXPECT_NEAR(out.tau_hat_B.z(), steady, 0.02 * inertia);
+}
+
+TEST(Controller, YawCommandIsLaggedByTheRotorInertiaTimeConstant) {
+  // A constant yaw-torque demand reaches the allocation through 1/(1 + s·τ_R),
+  // τ_R = J_R·(2π/60)/(2·k_I·n̄): 63 % after τ_R, all of it in steady state.
+  Controller c(paperVehicle(), paramsFor(AccelerationCompensation::kNone, TorqueCompensation::kNone));
+  ControllerInput in = hoverInput(2.0);
+  (void)c.update(in);  // start the lag at zero demand
+  in.reference.yaw_acc_radps2 = 1.0;  // feed-forward: τ_z = J_z·ψ̈ once the error loop agrees
+  const auto& r = paperVehicle().params().rotor;
+  const double tau_r = r.J_R_kgm2 * geaware::model::kRpmToRadPerSec /
+                       (2.0 * r.k_I_Nm_per_rpm2 * in.rotor_speeds_rpm.mean());
+  EXPECT_GT(tau_r, 0.5);  // this vehicle: ≈ 0.85 s, far slower than the 30 ms motors
+  const int steps_tau = static_cast<int>(std::lround(tau_r * c.params().rate_hz));
+  ControllerOutput out;
+  for (int k = 0; k < steps_tau; ++k) out = c.update(in);
+  EXPECT_NEAR(out.yaw_torque_allocated_Nm / out.tau_des_B.z(), 1.0 - std::exp(-1.0), 0.03);
+  for (int k = 0; k < 10 * steps_tau; ++k) out = c.update(in);
+  EXPECT_NEAR(out.yaw_torque_allocated_Nm, out.tau_des_B.z(), 1e-3 * std::abs(out.tau_des_B.z()));
+}
+
 TEST(Controller, ModelTorqueUsesTheGroundEffectInertia) {
   ControllerInput in = hoverInput(0.186);
   in.estimate.q_WB = Eigen::Quaterniond(Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitX()));

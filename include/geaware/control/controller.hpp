@@ -14,6 +14,13 @@
 //   5. rotor speeds N² = M⁻¹·[T; τ] with saturation that keeps thrust, then roll/pitch,
 //      before yaw; throttles from the inverse throttle curve plus the shared PI correction on
 //      the thrust-acceleration error (FACTS.md, supplementary section 3).
+// Where it departs from the paper: the yaw torque of a rotor is k_I·n² + J_R·ṅ (the paper's
+// own motor model), and with this vehicle's J_R the J_R·ṅ part dominates any fast yaw command
+// (≈ 28× the k_I·n² effect above 0.2 Hz). The mixer's k_I·n² alone would make the yaw loop
+// 28× too stiff and, with incremental inversion, unstable. So τ̂_B includes J_R·ṅ from the
+// measured speeds, and the yaw command is passed through the lag 1/(1 + s·τ_R),
+// τ_R = J_R·(2π/60)/(2·k_I·n̄), that cancels the lead (1 + s·τ_R) of the rotors' yaw response
+// (the same effect Smeur et al. 2016 model with their G2 term). docs/controller.md.
 // No allocation and no exceptions in update(); invalid inputs are flagged and never reach the
 // motors as NaN.
 
@@ -74,6 +81,7 @@ struct ControllerOutput {
   Eigen::Vector3d w_des_B = Eigen::Vector3d::Zero();             ///< [rad/s]
   Eigen::Vector3d w_dot_des_B = Eigen::Vector3d::Zero();         ///< [rad/s²]
   Eigen::Vector3d tau_des_B = Eigen::Vector3d::Zero();           ///< torque command [N·m]
+  double yaw_torque_allocated_Nm = 0.0;                          ///< τ_z after the rotor-inertia lag [N·m]
   Eigen::Vector3d tau_hat_B = Eigen::Vector3d::Zero();           ///< filtered τ̂_B from rotor speeds [N·m]
   Eigen::Vector4d n_des_rpm = Eigen::Vector4d::Zero();           ///< rotor-speed command [rpm]
   double height_used_m = 0.0;                                    ///< height the models used [m]
@@ -113,6 +121,8 @@ class Controller {
   model::Mixer mixer_;
   model::ThrottleCurve throttle_curve_;
   double k_T_N_per_rpm2_;
+  double k_I_Nm_per_rpm2_;
+  double J_R_kgm2_;
   flatness::FlatMap reference_map_;
   double dt_s_;
 
@@ -126,6 +136,12 @@ class Controller {
   bool have_last_w_ = false;
   double thrust_pi_integral_ = 0.0;
   double last_height_m_;
+  // Rotor-inertia yaw torque J_R·ṅ: the previous measured speeds (for ṅ) and the lag that
+  // cancels its lead in the yaw command (see update(), step 5).
+  Eigen::Vector4d last_n_meas_rpm_ = Eigen::Vector4d::Zero();
+  bool have_last_n_ = false;
+  double yaw_torque_lagged_Nm_ = 0.0;
+  bool have_yaw_lag_ = false;
 };
 
 }  // namespace geaware::control

@@ -50,6 +50,9 @@ struct ControllerParams {
   double thrust_pi_ki = 0.05;         ///< K_I^T [1/(m/s²·s)]
   double thrust_pi_limit = 0.1;       ///< bound on the integral term and on t_E [throttle]
   int neural_iterations = 2;          ///< fixed-point iterations of the Neural-Lander thrust [-]
+  /// Account for the rotor-inertia yaw torque J_R·ṅ (in τ̂_B and by lagging the yaw command).
+  /// Off only to reproduce a controller that ignores it.
+  bool compensate_rotor_inertia = true;
 
   /// Every offending field with its value and expectation; empty when usable.
   [[nodiscard]] std::vector<model::FieldError> validate() const;
