@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "commands.hpp"
+#include "fly_command.hpp"
 #include "identify_command.hpp"
 #include "rig_command.hpp"
 
@@ -22,6 +23,8 @@ int main(int argc, char** argv) {
   app.get_subcommand("identify")->callback([&] { run = identify; });
   const auto rig = geaware::cli::addRigCommand(app);
   app.get_subcommand("rig")->callback([&] { run = rig; });
+  const auto fly = geaware::cli::addFlyCommand(app);
+  app.get_subcommand("fly")->callback([&] { run = fly; });
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,56 @@
+#pragma once
+// The flight log: one CSV row per control tick, streamed through a fixed buffer (the whole log
+// is never held in memory), with every stage of the data path — reference, estimate, truth,
+// heights, commands, torques, rotor speeds, throttles, flags — in columns whose names carry
+// their units, so a plotting tool opens the file directly (pandas.read_csv, gnuplot, a
+// spreadsheet). The column list is flightLogColumns(); docs/closed-loop.md describes each.
+// Times are written as the shortest text that reads back to the same double, every other value
+// as the shortest text that reads back to the same float32 (6–9 significant digits: far finer
+// than any sensor's noise, and half the size and formatting time of doubles). The same flight
+// gives a byte-identical file.
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "geaware/experiments/flight.hpp"
+
+namespace geaware::experiments {
+
+/// Column names, in file order.
+[[nodiscard]] const std::vector<std::string_view>& flightLogColumns();
+
+/// Streams the ticks of a flight to a CSV file.
+class CsvFlightLog final : public FlightObserver {
+ public:
+  /// Opens (truncates) `file` and writes the header; throws std::runtime_error naming the file
+  /// when it cannot be opened.
+  explicit CsvFlightLog(const std::filesystem::path& file);
+  ~CsvFlightLog() override;
+  CsvFlightLog(const CsvFlightLog&) = delete;
+  CsvFlightLog& operator=(const CsvFlightLog&) = delete;
+
+  /// Formats one row into the buffer; writes the buffer out when it is nearly full. A write
+  /// error is remembered and reported by finish()/close(). No allocation.
+  void onTick(const FlightTick& tick) noexcept override;
+  /// Flushes and closes; throws std::runtime_error naming the file on any write error.
+  void finish(const FlightResult& result) override;
+  void close();
+
+  [[nodiscard]] std::size_t rows() const noexcept { return rows_; }
+  [[nodiscard]] const std::filesystem::path& path() const noexcept { return path_; }
+
+ private:
+  void flush() noexcept;
+
+  std::filesystem::path path_;
+  std::FILE* file_ = nullptr;
+  std::vector<char> buffer_;  // reserved once; rows are appended, flushed when near capacity
+  std::size_t used_ = 0;
+  std::size_t rows_ = 0;
+  bool failed_ = false;
+};
+
+}  // namespace geaware::experiments
