@@ -19,6 +19,7 @@
 #include "geaware/experiments/flight.hpp"
 #include "geaware/experiments/flight_log.hpp"
 #include "geaware/io/vehicle_file.hpp"
+#include "geaware/experiments/scenario_file.hpp"
 #include "geaware/model/units.hpp"
 #include "geaware/neural/residual_network.hpp"
 #include "geaware/neural/weights_file.hpp"
@@ -30,6 +31,7 @@ namespace geaware::cli {
 namespace {
 
 struct FlyOptions {
+  std::string scenario;
   std::string vehicle;
   std::string trajectory;
   double height_m = std::nan("");
@@ -234,15 +236,21 @@ void writeReport(const std::filesystem::path& dir, const ReportCollector& c,
 
 int runFly(const FlyOptions& o, const std::string& command) {
   experiments::FlightScenario s;
-  s.vehicle = loadVehicle(o.vehicle);
-  if (!parseController(o.controller, s.controller)) {
-    throw std::invalid_argument("--controller '" + o.controller + "': expected ACC:TORQUE");
+  if (!o.scenario.empty()) {
+    // The scenario file fixes vehicle, trajectory, controller, terrain, disturbances and seed;
+    // the options that would contradict it are refused at parse time.
+    s = experiments::loadScenarioFile(o.scenario);
+  } else {
+    s.vehicle = loadVehicle(o.vehicle);
+    if (!parseController(o.controller, s.controller)) {
+      throw std::invalid_argument("--controller '" + o.controller + "': expected ACC:TORQUE");
+    }
+    s.trajectory = makeTrajectory(o);
+    s.seed = o.seed;
+    s.disturbances.turbulence = !o.no_turbulence;
   }
   if (std::isfinite(o.yaw_rate_gain)) s.controller.k_w_per_s.z() = o.yaw_rate_gain;
-  s.trajectory = makeTrajectory(o);
-  s.seed = o.seed;
   s.start_hover_s = o.start_hover_s;
-  s.disturbances.turbulence = !o.no_turbulence;
   for (const auto& a : o.ablate) {
     if (a == "motor_reaction") s.plant.motor_reaction = false;
     if (a == "gyroscopic") s.plant.gyroscopic = false;
@@ -250,7 +258,7 @@ int runFly(const FlyOptions& o, const std::string& command) {
   if (s.controller.acceleration == control::AccelerationCompensation::kNeural) {
     if (o.neural_weights.empty()) {
       throw std::invalid_argument(
-          "--controller " + o.controller +
+          "controller neural:" + std::string(control::toString(s.controller.torque)) +
           ": the Neural-Lander baseline needs a trained residual network; pass "
           "--neural-weights FILE (a weight file written by neural::saveWeights — the "
           "`geaware bench` campaign trains one from simulated flights and caches it)");
@@ -275,7 +283,10 @@ int runFly(const FlyOptions& o, const std::string& command) {
     observers.add(collector.get());
   }
 
-  const std::string title = describeTrajectory(o) + ", controller " + o.controller;
+  const std::string controller_name = std::string(control::toString(s.controller.acceleration)) + ":" +
+                                      control::toString(s.controller.torque);
+  const std::string title = (o.scenario.empty() ? describeTrajectory(o) : "scenario " + o.scenario) +
+                            ", controller " + controller_name;
   const experiments::FlightResult r =
       experiments::runFlight(s, observers.empty() ? nullptr : &observers);
 
@@ -285,7 +296,7 @@ int runFly(const FlyOptions& o, const std::string& command) {
   std::string variations = o.no_turbulence ? ", no turbulence" : "";
   if (std::isfinite(o.yaw_rate_gain)) variations += fmt::format(", K^ω_z = {}/s", o.yaw_rate_gain);
   for (const auto& a : o.ablate) variations += ", truth without " + a;
-  fmt::print(human, "{}, seed {}{}\n", title, o.seed, variations);
+  fmt::print(human, "{}, seed {}{}\n", title, s.seed, variations);
   fmt::print(
       human,
       "RMSE XOY {:.2f} cm, Z {:.2f} cm, all {:.2f} cm; max ‖E_P‖ {:.2f} cm; σ‖E_P‖ {:.2f} cm "
@@ -324,7 +335,7 @@ int runFly(const FlyOptions& o, const std::string& command) {
       doc += ",\"crash\":null";
     }
     doc += fmt::format(",\"samples\":{},\"controller\":{},\"seed\":{},\"flags\":{{", m.samples,
-                       jsonString(o.controller), o.seed);
+                       jsonString(controller_name), s.seed);
     for (int b = 0; b < experiments::kControllerFlagBits; ++b) {
       doc += fmt::format("{}{}:{}", b ? "," : "", jsonString(experiments::controllerFlagName(b)),
                          r.flag_counts[static_cast<std::size_t>(b)]);
@@ -352,14 +363,16 @@ Runner addFlyCommand(CLI::App& app) {
   cmd->add_option("--vehicle", o->vehicle,
                   "vehicle YAML file (default: the built-in paper quadrotor)")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--trajectory", o->trajectory, "lemniscate or hover-descent")
-      ->required()
-      ->check(CLI::IsMember({"lemniscate", "hover-descent"}));
-  cmd->add_option("--height", o->height_m,
-                  "flight height of the lemniscate / final height of the descent, rotor plane "
-                  "above the ground [m]")
-      ->required()
-      ->check(CLI::PositiveNumber);
+  auto* scenario = cmd->add_option("--scenario", o->scenario,
+                                   "flight scenario YAML file (docs/scenario-file.md); replaces "
+                                   "--vehicle, --trajectory…, --controller, --seed, --no-turbulence")
+                       ->check(CLI::ExistingFile);
+  auto* trajectory = cmd->add_option("--trajectory", o->trajectory, "lemniscate or hover-descent")
+                         ->check(CLI::IsMember({"lemniscate", "hover-descent"}));
+  auto* height = cmd->add_option("--height", o->height_m,
+                                 "flight height of the lemniscate / final height of the descent, "
+                                 "rotor plane above the ground [m]")
+                     ->check(CLI::PositiveNumber);
   cmd->add_option("--speed", o->speed_mps,
                   "lemniscate: peak speed; hover-descent: descent rate (default 0.1) [m/s]")
       ->check(CLI::PositiveNumber);
@@ -375,11 +388,10 @@ Runner addFlyCommand(CLI::App& app) {
   cmd->add_option("--from-height", o->from_height_m, "hover-descent start height [m]")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--controller", o->controller,
-                  "ACC:TORQUE, ACC in none|indi|neural|model, TORQUE in "
-                  "none|model|indi|model_indi (the paper's: model:model_indi)")
-      ->required()
-      ->check(kControllerSpec);
+  auto* controller = cmd->add_option("--controller", o->controller,
+                                     "ACC:TORQUE, ACC in none|indi|neural|model, TORQUE in "
+                                     "none|model|indi|model_indi (the paper's: model:model_indi)")
+                         ->check(kControllerSpec);
   cmd->add_option("--yaw-rate-gain", o->yaw_rate_gain,
                   "override K^ω_z, the controller's yaw-rate gain (default: the paper's 16) "
                   "[1/s]; see docs/closed-loop.md on the yaw channel")
@@ -400,8 +412,18 @@ Runner addFlyCommand(CLI::App& app) {
   cmd->add_option("--neural-weights", o->neural_weights,
                   "Neural-Lander weight file, for --controller neural:…")
       ->check(CLI::ExistingFile);
+  // Either a scenario file or the trajectory options, never both.
+  for (auto* opt : {trajectory, height, controller}) scenario->excludes(opt);
+  for (const char* name : {"--vehicle", "--speed", "--extent-x", "--extent-y", "--laps",
+                           "--from-height", "--seed", "--no-turbulence"}) {
+    scenario->excludes(cmd->get_option(name));
+  }
   // Combinations CLI11 cannot express: usage errors (exit status 2) at parse time.
   cmd->parse_complete_callback([o]() {
+    if (o->scenario.empty() && (o->trajectory.empty() || !std::isfinite(o->height_m) || o->controller.empty())) {
+      throw CLI::ValidationError("geaware fly",
+                                 "give --scenario FILE, or --trajectory, --height and --controller");
+    }
     if (o->trajectory == "lemniscate" && !std::isfinite(o->speed_mps)) {
       throw CLI::ValidationError("--speed",
                                  "--trajectory lemniscate needs --speed V (peak speed) [m/s]");

@@ -5,7 +5,7 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "yaml_reader.hpp"
+#include "geaware/io/yaml_reader.hpp"
 
 namespace geaware::io {
 namespace detail {
@@ -14,7 +14,7 @@ extern const std::string_view kBuiltinVehicleYaml;
 
 namespace {
 
-model::VehicleParams readVehicle(detail::MapReader& root) {
+model::VehicleParams readVehicle(MapReader& root) {
   model::VehicleParams p;
   p.name = root.text("name");
   p.mass_kg = root.number("mass_kg");
@@ -82,8 +82,8 @@ model::VehicleParams parseVehicleYaml(std::string_view yaml_text, const std::str
   if (!doc.IsMap()) {
     throw ConfigError(source, {{1, "", "expected a map of vehicle parameters at the top level"}});
   }
-  detail::YamlContext ctx;
-  detail::MapReader root(doc, "", ctx);
+  YamlContext ctx;
+  MapReader root(doc, "", ctx);
   model::VehicleParams params = readVehicle(root);
   if (!ctx.problems.empty()) throw ConfigError(source, std::move(ctx.problems));
 

@@ -1,9 +1,9 @@
-#include "yaml_reader.hpp"
+#include "geaware/io/yaml_reader.hpp"
 
 #include <cmath>
 #include <limits>
 
-namespace geaware::io::detail {
+namespace geaware::io {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -135,6 +135,82 @@ MapReader MapReader::map(const std::string& key) {
   return child;
 }
 
+long MapReader::integer(const std::string& key, long lo, long hi) {
+  const double v = number(key);
+  if (std::isnan(v)) return lo;  // already reported (missing or not a number)
+  if (!(v == std::floor(v) && v >= static_cast<double>(lo) && v <= static_cast<double>(hi))) {
+    ctx_.problem(ctx_.lineOf(pathOf(key)), pathOf(key),
+                 "expected a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return lo;
+  }
+  return static_cast<long>(v);
+}
+
+bool MapReader::boolean(const std::string& key) {
+  const YAML::Node n = required(key);
+  if (!n.IsDefined()) return false;
+  try {
+    if (n.IsScalar()) return n.as<bool>();
+  } catch (const YAML::Exception&) {
+  }
+  ctx_.problem(lineOfNode(n), pathOf(key),
+               n.IsScalar() ? "expected true or false, got '" + n.Scalar() + "'"
+                            : std::string("expected true or false, got ") + typeName(n));
+  return false;
+}
+
+std::vector<double> MapReader::fixedNumbers(const std::string& key, std::size_t n) {
+  std::vector<double> v = numbers(key);
+  if (v.size() != n && ctx_.lines.contains(pathOf(key))) {
+    ctx_.problem(ctx_.lineOf(pathOf(key)), pathOf(key),
+                 "expected a list of " + std::to_string(n) + " numbers, got " + std::to_string(v.size()));
+  }
+  v.resize(n, kNaN);
+  return v;
+}
+
+std::vector<std::vector<double>> MapReader::rows(const std::string& key, std::size_t n) {
+  const YAML::Node node = required(key);
+  std::vector<std::vector<double>> out;
+  if (!node.IsDefined()) return out;
+  if (!node.IsSequence()) {
+    ctx_.problem(lineOfNode(node), pathOf(key), std::string("expected a list of lists, got ") + typeName(node));
+    return out;
+  }
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const std::string item = pathOf(key) + "[" + std::to_string(i) + "]";
+    const YAML::Node row = node[i];
+    std::vector<double> values(n, kNaN);
+    if (!row.IsSequence() || row.size() != n) {
+      ctx_.problem(lineOfNode(row), item, "expected a list of " + std::to_string(n) + " numbers");
+    } else {
+      for (std::size_t j = 0; j < n; ++j) {
+        if (!toNumber(row[j], values[j])) {
+          ctx_.problem(lineOfNode(row[j]), item + "[" + std::to_string(j) + "]", "expected a number");
+        }
+      }
+    }
+    out.push_back(std::move(values));
+  }
+  return out;
+}
+
+std::string MapReader::choice(const std::string& key, const std::vector<std::string>& choices) {
+  const std::string v = text(key);
+  if (!ctx_.lines.contains(pathOf(key))) return {};
+  for (const auto& c : choices) {
+    if (v == c) return v;
+  }
+  std::string list;
+  for (const auto& c : choices) list += (list.empty() ? "" : ", ") + c;
+  ctx_.problem(ctx_.lineOf(pathOf(key)), pathOf(key), "got '" + v + "', expected one of: " + list);
+  return {};
+}
+
+void MapReader::problem(const std::string& key, const std::string& message) {
+  ctx_.problem(ctx_.lineOf(pathOf(key)), pathOf(key), message);
+}
+
 void MapReader::rejectUnknownKeys() {
   if (!valid_) return;
   std::set<std::string> seen;
@@ -154,4 +230,4 @@ void MapReader::rejectUnknownKeys() {
   }
 }
 
-}  // namespace geaware::io::detail
+}  // namespace geaware::io

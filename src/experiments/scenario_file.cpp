@@ -1,0 +1,203 @@
+#include "geaware/experiments/scenario_file.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "geaware/io/vehicle_file.hpp"
+#include "geaware/io/yaml_reader.hpp"
+#include "geaware/model/units.hpp"
+#include "geaware/sim/terrains.hpp"
+#include "geaware/traj/hover_descent.hpp"
+#include "geaware/traj/lemniscate.hpp"
+#include "geaware/traj/min_snap.hpp"
+
+namespace geaware::experiments {
+namespace {
+
+/// `p` as written, or relative to the scenario file's folder.
+std::filesystem::path resolve(const std::filesystem::path& base, const std::string& p) {
+  const std::filesystem::path path(p);
+  return path.is_absolute() ? path : base / path;
+}
+
+Eigen::Vector2d vec2(const std::vector<double>& v) { return {v[0], v[1]}; }
+Eigen::Vector3d vec3(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
+
+/// Runs a constructor that validates and throws std::invalid_argument; its message becomes a
+/// problem at the section's key. Skipped when the file already has problems (a missing or
+/// malformed value would only be reported a second time, less clearly).
+template <typename Make>
+auto buildOrReport(io::MapReader& section, const std::string& key, Make make) -> decltype(make()) {
+  if (section.problemCount() > 0) return nullptr;
+  try {
+    return make();
+  } catch (const std::exception& e) {
+    section.problem(key, e.what());
+    return nullptr;
+  }
+}
+
+std::shared_ptr<const traj::Trajectory> readTrajectory(io::MapReader& t) {
+  const std::string type = t.choice("type", {"lemniscate", "hover_descent", "waypoints"});
+  if (type == "lemniscate") {
+    traj::LemniscateParams p;
+    p.centre_xy_m = vec2(t.fixedNumbers("centre_xy_m", 2));
+    p.half_extent_x_m = t.number("half_extent_x_m");
+    p.half_extent_y_m = t.number("half_extent_y_m");
+    p.height_m = t.number("height_m");
+    p.peak_speed_mps = t.number("peak_speed_mps");
+    p.laps = static_cast<int>(t.integer("laps", 1, 1000));
+    p.ramp_time_s = t.number("ramp_time_s");
+    p.yaw_rad = t.number("yaw_deg") * model::kDegToRad;
+    t.rejectUnknownKeys();
+    return buildOrReport(t, "type", [&] { return std::make_shared<const traj::Lemniscate>(p); });
+  }
+  if (type == "hover_descent") {
+    traj::HoverDescentParams p;
+    p.position_xy_m = vec2(t.fixedNumbers("position_xy_m", 2));
+    p.from_height_m = t.number("from_height_m");
+    p.to_height_m = t.number("to_height_m");
+    p.descent_rate_mps = t.number("descent_rate_mps");
+    p.ramp_time_s = t.number("ramp_time_s");
+    p.hold_start_s = t.number("hold_start_s");
+    p.hold_end_s = t.number("hold_end_s");
+    p.yaw_rad = t.number("yaw_deg") * model::kDegToRad;
+    t.rejectUnknownKeys();
+    return buildOrReport(t, "type", [&] { return std::make_shared<const traj::HoverDescent>(p); });
+  }
+  if (type == "waypoints") {
+    std::vector<traj::Waypoint> wps;
+    for (const auto& r : t.rows("points_m", 3)) wps.push_back({vec3(r), 0.0});
+    const double yaw = t.number("yaw_deg") * model::kDegToRad;
+    for (auto& w : wps) w.yaw_rad = yaw;
+    const double speed = t.number("average_speed_mps");
+    t.rejectUnknownKeys();
+    return buildOrReport(t, "type", [&] {
+      return std::make_shared<const traj::MinSnapTrajectory>(
+          traj::MinSnapTrajectory::fromAverageSpeed(wps, speed));
+    });
+  }
+  t.rejectUnknownKeys();
+  return nullptr;
+}
+
+std::shared_ptr<const sim::Terrain> readTerrain(io::MapReader& t, const std::filesystem::path& base) {
+  const std::string type = t.choice("type", {"flat", "tilted", "step", "height_map"});
+  std::shared_ptr<const sim::Terrain> out;
+  if (type == "flat") {
+    const double z = t.number("height_m");
+    out = std::make_shared<const sim::FlatGround>(z);
+  } else if (type == "tilted") {
+    const Eigen::Vector3d point = vec3(t.fixedNumbers("point_m", 3));
+    const double roll = t.number("roll_deg") * model::kDegToRad;
+    const double pitch = t.number("pitch_deg") * model::kDegToRad;
+    out = buildOrReport(t, "type", [&] {
+      return std::make_shared<const sim::TiltedPlane>(sim::TiltedPlane::fromTilt(point, roll, pitch));
+    });
+  } else if (type == "step") {
+    const Eigen::Vector2d edge = vec2(t.fixedNumbers("edge_point_xy_m", 2));
+    const Eigen::Vector2d towards = vec2(t.fixedNumbers("towards_high_xy", 2));
+    const double low = t.number("low_m");
+    const double high = t.number("high_m");
+    out = buildOrReport(t, "type", [&] { return std::make_shared<const sim::StepTerrain>(edge, towards, low, high); });
+  } else if (type == "height_map") {
+    const std::string file = t.text("file");
+    if (!file.empty()) {
+      const std::filesystem::path path = resolve(base, file);
+      // A height-map problem names its own file and line (sim::TerrainFileError); it is
+      // reported here under the key that named the file.
+      out = buildOrReport(t, "file", [&] { return std::make_shared<const sim::HeightMap>(sim::HeightMap::fromFile(path.string())); });
+    }
+  }
+  t.rejectUnknownKeys();
+  return out;
+}
+
+}  // namespace
+
+FlightScenario parseScenarioYaml(std::string_view yaml_text, const std::string& source,
+                                 const std::filesystem::path& base_dir) {
+  YAML::Node doc;
+  try {
+    doc = YAML::Load(std::string(yaml_text));
+  } catch (const YAML::ParserException& e) {
+    throw io::ConfigError(source, {{e.mark.line + 1, "", "not valid YAML: " + e.msg}});
+  }
+  if (!doc.IsMap()) throw io::ConfigError(source, {{1, "", "expected a map (a flight scenario) at the top level"}});
+
+  io::YamlContext ctx;
+  io::MapReader root(doc, "", ctx);
+  FlightScenario s;
+
+  const std::string vehicle = root.text("vehicle");
+  if (vehicle == "builtin") {
+    s.vehicle = io::builtinVehicle();
+  } else if (!vehicle.empty()) {
+    const std::filesystem::path path = resolve(base_dir, vehicle);
+    try {
+      s.vehicle = io::loadVehicleFile(path);
+    } catch (const std::exception& e) {
+      root.problem("vehicle", std::string("cannot use the vehicle file: ") + e.what());
+    }
+  }
+  s.seed = static_cast<std::uint64_t>(root.integer("seed", 0, 1'000'000'000));
+
+  auto traj_section = root.map("trajectory");
+  s.trajectory = readTrajectory(traj_section);
+
+  auto ctrl = root.map("controller");
+  const std::string acc = ctrl.choice("acceleration", {"none", "indi", "neural", "model"});
+  const std::string torque = ctrl.choice("torque", {"none", "model", "indi", "model_indi"});
+  if (!acc.empty()) (void)control::parse(acc, s.controller.acceleration);
+  if (!torque.empty()) (void)control::parse(torque, s.controller.torque);
+  ctrl.rejectUnknownKeys();
+
+  auto terrain = root.map("terrain");
+  s.terrain = readTerrain(terrain, base_dir);
+
+  auto dist = root.map("disturbances");
+  s.disturbances.turbulence = dist.boolean("turbulence");
+  s.disturbances.wind_params.mean_W_mps = vec3(dist.fixedNumbers("wind_mps", 3));
+  s.disturbances.wind_params.gust_std_mps = vec3(dist.fixedNumbers("gust_std_mps", 3));
+  s.disturbances.wind = s.disturbances.wind_params.mean_W_mps.norm() > 0.0 ||
+                        s.disturbances.wind_params.gust_std_mps.norm() > 0.0;
+  dist.rejectUnknownKeys();
+
+  auto mis = root.map("truth_mismatch");
+  sim::MismatchSpec m;
+  m.mass_rel = mis.number("mass_rel");
+  m.inertia_rel = mis.number("inertia_rel");
+  m.cog_offset_m = mis.number("cog_offset_m");
+  m.cog_offset_z_m = mis.number("cog_offset_z_m");
+  m.thrust_spread_rel = mis.number("thrust_spread_rel");
+  mis.rejectUnknownKeys();
+  if (m.mass_rel != 0.0 || m.inertia_rel != 0.0 || m.cog_offset_m != 0.0 || m.cog_offset_z_m != 0.0 ||
+      m.thrust_spread_rel != 0.0) {
+    s.mismatch = m;
+  }
+  root.rejectUnknownKeys();
+  if (!ctx.problems.empty()) throw io::ConfigError(source, std::move(ctx.problems));
+
+  // Whole-scenario checks (ranges, the wind's and mismatch's own validation), each at its key.
+  for (const auto& e : validate(s)) {
+    ctx.problem(ctx.lineOf(e.field), e.field, "got " + e.value + ", expected " + e.expected);
+  }
+  if (!ctx.problems.empty()) throw io::ConfigError(source, std::move(ctx.problems));
+  return s;
+}
+
+FlightScenario loadScenarioFile(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) {
+    throw std::runtime_error(file.string() + (std::filesystem::exists(file, ec)
+                                                  ? ": not a regular file (expected a scenario YAML file)"
+                                                  : ": no such scenario file"));
+  }
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream text;
+  if (!in || !(text << in.rdbuf())) throw std::runtime_error(file.string() + ": cannot read scenario file");
+  return parseScenarioYaml(text.str(), file.string(), file.parent_path());
+}
+
+}  // namespace geaware::experiments

@@ -1,0 +1,170 @@
+// Scenario files: the committed examples load into the scenario they describe; every kind of
+// bad file is rejected with the file, the line and the key.
+#include "geaware/experiments/scenario_file.hpp"
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+#include "geaware/sim/terrains.hpp"
+#include "geaware/traj/lemniscate.hpp"
+
+namespace {
+
+using geaware::experiments::FlightScenario;
+using geaware::experiments::parseScenarioYaml;
+
+std::filesystem::path sourceDir() {
+  const char* dir = std::getenv("GEAWARE_SOURCE_DIR");
+  return dir ? std::filesystem::path(dir) : std::filesystem::current_path();
+}
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream f(p);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+const std::string& lowText() {
+  static const std::string t = slurp(sourceDir() / "config/scenarios/lemniscate_low.yaml");
+  return t;
+}
+
+/// The text with exactly one occurrence of `from` replaced; throws if it does not occur once,
+/// so a test cannot pass because its edit silently missed.
+std::string replaced(const std::string& text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  if (at == std::string::npos || text.find(from, at + 1) != std::string::npos) {
+    throw std::logic_error("pattern must occur exactly once: " + from);
+  }
+  return text.substr(0, at) + to + text.substr(at + from.size());
+}
+
+int lineOf(const std::string& text, const std::string& needle) {
+  const auto at = text.find(needle);
+  return at == std::string::npos ? -1 : 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+}
+
+/// The problems of a rejected text (fails the test when the text is accepted).
+std::vector<geaware::io::ConfigProblem> problemsOf(const std::string& text) {
+  try {
+    (void)parseScenarioYaml(text, "s.yaml", sourceDir() / "config/scenarios");
+  } catch (const geaware::io::ConfigError& e) {
+    return e.problems();
+  }
+  ADD_FAILURE() << "the scenario was accepted";
+  return {};
+}
+
+TEST(ScenarioFile, CommittedExamplesLoad) {
+  const FlightScenario s = geaware::experiments::loadScenarioFile(sourceDir() / "config/scenarios/lemniscate_low.yaml");
+  EXPECT_EQ(s.seed, 1u);
+  EXPECT_EQ(s.controller.acceleration, geaware::control::AccelerationCompensation::kModel);
+  EXPECT_EQ(s.controller.torque, geaware::control::TorqueCompensation::kModelIndi);
+  const auto* lem = dynamic_cast<const geaware::traj::Lemniscate*>(s.trajectory.get());
+  ASSERT_NE(lem, nullptr);
+  EXPECT_DOUBLE_EQ(lem->params().height_m, 0.12);
+  EXPECT_DOUBLE_EQ(lem->params().peak_speed_mps, 1.0);
+  EXPECT_NE(dynamic_cast<const geaware::sim::FlatGround*>(s.terrain.get()), nullptr);
+  EXPECT_TRUE(s.disturbances.turbulence);
+  EXPECT_FALSE(s.disturbances.wind);
+  EXPECT_FALSE(s.mismatch.has_value());
+  EXPECT_EQ(s.vehicle.name, "paper_quad");
+
+  const FlightScenario edge = geaware::experiments::loadScenarioFile(sourceDir() / "config/scenarios/table_edge.yaml");
+  const auto* step = dynamic_cast<const geaware::sim::StepTerrain*>(edge.terrain.get());
+  ASSERT_NE(step, nullptr);
+  EXPECT_DOUBLE_EQ(step->heightAt(0.5, 0.0), 0.10);
+  EXPECT_DOUBLE_EQ(step->heightAt(-0.5, 0.0), 0.0);
+  ASSERT_TRUE(edge.mismatch.has_value());
+  EXPECT_DOUBLE_EQ(edge.mismatch->mass_rel, 0.05);
+  EXPECT_NEAR(edge.trajectory->sample(0.0).p_W.x(), -1.0, 1e-12);
+}
+
+TEST(ScenarioFile, UnknownAndMissingKeysNameTheKeyAndLine) {
+  {
+    const std::string text = replaced(lowText(), "  laps: 1\n", "  laps: 1\n  lap_count: 2\n");
+    const auto p = problemsOf(text);
+    ASSERT_EQ(p.size(), 1u);
+    EXPECT_EQ(p[0].key, "trajectory.lap_count");
+    EXPECT_EQ(p[0].line, lineOf(text, "lap_count"));
+    EXPECT_NE(p[0].message.find("unknown key"), std::string::npos);
+  }
+  {
+    const std::string text = replaced(lowText(), "  peak_speed_mps: 1.0\n", "");
+    const auto p = problemsOf(text);
+    ASSERT_EQ(p.size(), 1u);
+    EXPECT_EQ(p[0].key, "trajectory.peak_speed_mps");
+    EXPECT_EQ(p[0].line, lineOf(text, "trajectory:"));
+    EXPECT_NE(p[0].message.find("missing"), std::string::npos);
+  }
+}
+
+TEST(ScenarioFile, WrongChoicesAndTypesAreNamed) {
+  {
+    const auto p = problemsOf(replaced(lowText(), "acceleration: model ", "acceleration: pid "));
+    ASSERT_EQ(p.size(), 1u);
+    EXPECT_EQ(p[0].key, "controller.acceleration");
+    EXPECT_NE(p[0].message.find("none, indi, neural, model"), std::string::npos) << p[0].message;
+  }
+  {
+    const auto p = problemsOf(replaced(lowText(), "turbulence: true", "turbulence: maybe"));
+    ASSERT_EQ(p.size(), 1u);
+    EXPECT_EQ(p[0].key, "disturbances.turbulence");
+    EXPECT_NE(p[0].message.find("true or false"), std::string::npos);
+  }
+  {
+    const auto p = problemsOf(replaced(lowText(), "wind_mps: [0.0, 0.0, 0.0]", "wind_mps: [0.0, 0.0]"));
+    ASSERT_EQ(p.size(), 1u);
+    EXPECT_EQ(p[0].key, "disturbances.wind_mps");
+    EXPECT_NE(p[0].message.find("3 numbers"), std::string::npos);
+  }
+  {
+    const auto p = problemsOf(replaced(lowText(), "laps: 1", "laps: 1.5"));
+    ASSERT_EQ(p.size(), 1u);
+    EXPECT_EQ(p[0].key, "trajectory.laps");
+  }
+}
+
+TEST(ScenarioFile, AnImpossibleTrajectoryIsRefusedWithTheReason) {
+  // Ramps longer than the flight: the trajectory's own validation explains it.
+  const auto p = problemsOf(replaced(lowText(), "ramp_time_s: 2.0", "ramp_time_s: 50.0"));
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_EQ(p[0].key, "trajectory.type");
+  EXPECT_NE(p[0].message.find("ramp_time_s"), std::string::npos) << p[0].message;
+}
+
+TEST(ScenarioFile, MissingFilesAreNamed) {
+  {
+    const auto p = problemsOf(replaced(lowText(), "vehicle: builtin", "vehicle: no_such_quad.yaml"));
+    ASSERT_EQ(p.size(), 1u);
+    EXPECT_EQ(p[0].key, "vehicle");
+    EXPECT_NE(p[0].message.find("no_such_quad.yaml"), std::string::npos) << p[0].message;
+  }
+  {
+    const auto p = problemsOf(replaced(lowText(), "  type: flat                     # flat | tilted | step | height_map\n  height_m: 0.0\n",
+                                       "  type: height_map\n  file: no_such_map.csv\n"));
+    ASSERT_EQ(p.size(), 1u);
+    EXPECT_EQ(p[0].key, "terrain.file");
+    EXPECT_NE(p[0].message.find("no_such_map.csv"), std::string::npos) << p[0].message;
+  }
+  EXPECT_THROW((void)geaware::experiments::loadScenarioFile("/nonexistent/scenario.yaml"), std::runtime_error);
+}
+
+TEST(ScenarioFile, MalformedYamlGivesTheLine) {
+  try {
+    (void)parseScenarioYaml("seed: 1\ntrajectory: [a, b\n", "bad.yaml", ".");
+    FAIL() << "accepted";
+  } catch (const geaware::io::ConfigError& e) {
+    ASSERT_FALSE(e.problems().empty());
+    EXPECT_GE(e.problems()[0].line, 2);
+    EXPECT_NE(std::string(e.what()).find("bad.yaml"), std::string::npos);
+  }
+}
+
+}  // namespace
