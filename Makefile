@@ -22,7 +22,8 @@ build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
 demo: build
-	$(BUILD_DIR)/apps/geaware/geaware model --heights 0.072:0.5:0.02
+	$(BUILD_DIR)/apps/geaware/geaware bench --report $(BUILD_DIR)/bench-report --json $(BUILD_DIR)/bench-results.json
+	@echo "report: $(BUILD_DIR)/bench-report/index.html (open it in a browser)"
 
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)

@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "bench_command.hpp"
 #include "commands.hpp"
 #include "fly_command.hpp"
 #include "identify_command.hpp"
@@ -25,6 +26,8 @@ int main(int argc, char** argv) {
   app.get_subcommand("rig")->callback([&] { run = rig; });
   const auto fly = geaware::cli::addFlyCommand(app);
   app.get_subcommand("fly")->callback([&] { run = fly; });
+  const auto bench = geaware::cli::addBenchCommand(app);
+  app.get_subcommand("bench")->callback([&] { run = bench; });
 
   try {
     app.parse(argc, argv);

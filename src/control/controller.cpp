@@ -98,6 +98,7 @@ void Controller::reset() noexcept {
   thrust_pi_integral_ = 0.0;
   last_height_m_ = kFarFromGroundM;
   have_last_n_ = false;
+  have_ground_ = false;
   have_yaw_lag_ = false;
   yaw_torque_lagged_Nm_ = 0.0;
 }
@@ -153,15 +154,25 @@ ControllerOutput Controller::update(const ControllerInput& in) noexcept {
       !in.accel_B.allFinite() || !in.rotor_speeds_rpm.allFinite()) {
     return fallback(kFlagNonFiniteInput);
   }
-  // A height that is missing, non-finite or negative keeps the last valid one.
+  // A height that is missing, non-finite or negative keeps the last valid one, and with it the
+  // ground elevation under the vehicle, z_g = ẑ − h (the surface the ranger sees).
   if (in.height_valid && std::isfinite(in.height_m) && in.height_m >= 0.0) {
     last_height_m_ = std::min(in.height_m, kFarFromGroundM);
+    ground_z_m_ = in.estimate.p_W.z() - in.height_m;
+    have_ground_ = true;
   } else {
     flags |= kFlagHeightInvalid;
   }
-  const double h = last_height_m_;
+  // The ground-effect models are evaluated at the height of the *desired* state above that
+  // ground (the paper: "the predicted external force under the desired state"), so they stay a
+  // feed-forward. At the measured height the slope of F_G(h) would act as height feedback that
+  // cancels the position gain close to the ground (docs/controller.md).
+  double h = last_height_m_;
+  if (params_.ground_effect_height == GroundEffectHeight::kReference && have_ground_) {
+    h = std::clamp(in.reference.p_W.z() - ground_z_m_, 0.0, kFarFromGroundM);
+  }
 
-  // 1. Reference from the flat map at the measured height.
+  // 1. Reference from the flat map at that height.
   const flatness::FlatState ref = reference_map_.evaluate(in.reference, h);
   if (!ref.ok()) return fallback(flags | kFlagReferenceInvalid);
 

@@ -249,6 +249,30 @@ TEST(Controller, NonFiniteInputsNeverReachTheMotors) {
   }
 }
 
+TEST(Controller, GroundEffectIsPredictedAtTheDesiredHeight) {
+  // The vehicle is 3 cm below its 0.15 m reference; the ranger reads 0.12 m over ground at z = 0.
+  ControllerInput in = hoverInput(0.15);
+  in.estimate.p_W.z() = 0.12;
+  in.height_m = 0.12;
+  Controller ref(paperVehicle(), paramsFor(AccelerationCompensation::kModel, TorqueCompensation::kModel));
+  const ControllerOutput a = ref.update(in);
+  EXPECT_NEAR(a.height_used_m, 0.15, 1e-12);  // z_ref − (ẑ − h) = 0.15 − 0
+  // The same over a 0.5 m table: the ground the ranger sees is used, not z = 0.
+  ControllerInput table = in;
+  table.reference.p_W.z() += 0.5;
+  table.estimate.p_W.z() += 0.5;
+  Controller ref2(paperVehicle(), paramsFor(AccelerationCompensation::kModel, TorqueCompensation::kModel));
+  EXPECT_NEAR(ref2.update(table).height_used_m, 0.15, 1e-12);
+  // The measured-height variant uses the ranger's 0.12 m, so F_G — and the thrust cut — is larger.
+  ControllerParams p = paramsFor(AccelerationCompensation::kModel, TorqueCompensation::kModel);
+  p.ground_effect_height = GroundEffectHeight::kMeasured;
+  Controller meas(paperVehicle(), p);
+  const ControllerOutput b = meas.update(in);
+  EXPECT_NEAR(b.height_used_m, 0.12, 1e-12);
+  EXPECT_GT(paperVehicle().groundEffect().thrustRatio(b.height_used_m),
+            paperVehicle().groundEffect().thrustRatio(a.height_used_m));
+}
+
 TEST(Controller, MissingHeightKeepsTheLastValidOneAndIsFlagged) {
   Controller c(paperVehicle(), paramsFor(AccelerationCompensation::kModel, TorqueCompensation::kModelIndi));
   (void)c.update(hoverInput(0.15));

@@ -84,7 +84,7 @@ struct ControllerOutput {
   double yaw_torque_allocated_Nm = 0.0;                          ///< τ_z after the rotor-inertia lag [N·m]
   Eigen::Vector3d tau_hat_B = Eigen::Vector3d::Zero();           ///< filtered τ̂_B from rotor speeds [N·m]
   Eigen::Vector4d n_des_rpm = Eigen::Vector4d::Zero();           ///< rotor-speed command [rpm]
-  double height_used_m = 0.0;                                    ///< height the models used [m]
+  double height_used_m = 0.0;                                    ///< height the ground-effect models used [m]
   std::uint32_t flags = kFlagNone;                               ///< ControllerFlag bits
 };
 
@@ -136,6 +136,8 @@ class Controller {
   bool have_last_w_ = false;
   double thrust_pi_integral_ = 0.0;
   double last_height_m_;
+  double ground_z_m_ = 0.0;  // ground elevation under the vehicle from the last valid height [m]
+  bool have_ground_ = false;
   // Rotor-inertia yaw torque J_R·ṅ: the previous measured speeds (for ṅ) and the lag that
   // cancels its lead in the yaw command (see update(), step 5).
   Eigen::Vector4d last_n_meas_rpm_ = Eigen::Vector4d::Zero();

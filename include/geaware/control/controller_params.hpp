@@ -34,6 +34,12 @@ enum class TorqueCompensation {
 /// Parses "none", "model", "indi", "model_indi"; false when unknown.
 [[nodiscard]] bool parse(const std::string& text, TorqueCompensation& out) noexcept;
 
+/// The height at which the ground-effect models (F_G, D(h), J'(h)) are evaluated.
+enum class GroundEffectHeight {
+  kReference,  ///< the reference's height above the ground the ranger sees (a feed-forward)
+  kMeasured,   ///< the measured height (makes F_G's slope a height feedback)
+};
+
 struct ControllerParams {
   AccelerationCompensation acceleration = AccelerationCompensation::kModel;
   TorqueCompensation torque = TorqueCompensation::kModelIndi;
@@ -53,6 +59,9 @@ struct ControllerParams {
   /// Account for the rotor-inertia yaw torque J_R·ṅ (in τ̂_B and by lagging the yaw command).
   /// Off only to reproduce a controller that ignores it.
   bool compensate_rotor_inertia = true;
+  /// Where the ground-effect models are evaluated; the paper predicts the force "under the
+  /// desired state". kMeasured only to reproduce a controller that uses the ranger height.
+  GroundEffectHeight ground_effect_height = GroundEffectHeight::kReference;
 
   /// Every offending field with its value and expectation; empty when usable.
   [[nodiscard]] std::vector<model::FieldError> validate() const;

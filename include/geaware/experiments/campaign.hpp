@@ -1,0 +1,120 @@
+#pragma once
+// The paper's experiments in one call (issue 6, `geaware bench`; docs/results.md):
+//   1. calibrate: the virtual rigs on the truth → the controller's identified parameters
+//      (experiments/calibration.hpp);
+//   2. the Neural-Lander baseline: collection flights, training, a cached weight file
+//      (experiments/neural_baseline.hpp);
+//   3. the eight Table I experiments over seeds, and the hover-descent experiment for the four
+//      torque compensations (experiments/table_one.hpp, hover_experiment.hpp), flown on a
+//      thread pool (experiments/flight_pool.hpp) with results identical to a serial run;
+//   4. the summary: Table I beside the paper's, the headline ratios and the acceptance checks
+//      of the issue, as text and as JSON.
+// The report page is experiments/campaign_report.hpp.
+//
+// Every flight's controller is built from the IDENTIFIED parameters; the truth is the vehicle
+// file's nominal truth (sim::fromNominal), optionally with a seeded per-flight mismatch.
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geaware/experiments/calibration.hpp"
+#include "geaware/experiments/flight.hpp"
+#include "geaware/experiments/flight_series.hpp"
+#include "geaware/experiments/hover_experiment.hpp"
+#include "geaware/experiments/neural_baseline.hpp"
+#include "geaware/experiments/table_one.hpp"
+#include "geaware/model/vehicle_params.hpp"
+#include "geaware/sim/truth_params.hpp"
+
+namespace geaware::experiments {
+
+/// What `--truth-mismatch` draws (per flight, seeded by the flight's seed), for a vehicle whose
+/// mass is weighed and whose inertia and CoG come from CAD: mass ±1 %, each principal moment
+/// ±10 %, CoG ±2 mm in x, y and ±5 mm in z, per-motor thrust ±2 %. (The paper's position loop
+/// has no integrator: 1 % of mass is ≈ 3 cm of height error with K^P = 3 /s².)
+[[nodiscard]] sim::MismatchSpec defaultTruthMismatch();
+
+struct CampaignOptions {
+  /// The vehicle file (nominal): the truth is sim::fromNominal of it; the controller gets it
+  /// with the identified values merged in.
+  model::VehicleParams vehicle;
+  int seeds = 5;                 ///< flights per experiment and per hover curve
+  std::uint64_t first_seed = 1;  ///< seeds first_seed … first_seed + seeds − 1 (all experiments)
+  std::vector<int> experiments = {1, 2, 3, 4, 5, 6, 7, 8};  ///< Table I rows to fly
+  bool hover = true;             ///< fly the hover experiment
+  int jobs = 0;                  ///< flight threads; 0: the hardware's
+  std::filesystem::path cache_dir;  ///< Neural-Lander cache; empty: no cache
+  bool turbulence = true;           ///< the truth's near-ground turbulence
+  /// Hover at the first point before every trajectory [s]: the runner starts the truth in its
+  /// own hover there, and a controller with an imperfect model needs ≈ 2 s to settle; the
+  /// paper's flights start from a settled hover.
+  double start_hover_s = 3.0;
+  std::optional<sim::MismatchSpec> mismatch;  ///< per-flight truth mismatch; empty: none
+  CalibrationSweeps calibration = CalibrationSweeps::defaults();
+  NeuralSettings neural;
+  HoverSettings hover_settings;
+  /// Collect decimated time series of each experiment's and hover curve's first seed (for the
+  /// report).
+  bool collect_series = false;
+  /// One-line progress messages (stage changes, each finished flight).
+  std::function<void(const std::string&)> progress;
+};
+
+/// Ratios the paper headlines and the issue's acceptance criteria, each with its threshold.
+struct AcceptanceCheck {
+  std::string name;        ///< e.g. "exp 5 / exp 1, RMSE all"
+  std::string criterion;   ///< e.g. "≤ 0.45"
+  double value = 0.0;      ///< ours
+  std::string paper;       ///< the paper's value, when it has one
+  bool pass = false;
+};
+
+struct HoverSeries {
+  control::TorqueCompensation torque = control::TorqueCompensation::kNone;
+  FlightSeries series;
+};
+
+struct CampaignResult {
+  ControllerCalibration calibration;
+  std::optional<NeuralBaseline> neural;         ///< when experiment 3 was flown
+  std::vector<ExperimentSummary> experiments;   ///< in the order asked for
+  std::vector<HoverCurve> hover;                ///< in HoverSettings::torques order
+  /// First-seed time series, by experiment number (collect_series).
+  std::map<int, FlightSeries> series;
+  std::vector<HoverSeries> hover_series;
+  std::vector<AcceptanceCheck> checks;          ///< those the flown experiments allow
+  int seeds = 0;
+  int threads = 1;
+  double calibration_s = 0.0;  ///< wall time of each stage [s]
+  double neural_s = 0.0;
+  double flights_s = 0.0;
+  double wall_s = 0.0;
+  std::size_t flights = 0;
+  double simulated_s = 0.0;    ///< total simulated time of the campaign's flights [s]
+
+  /// The summary of experiment `number`, or null when it was not flown.
+  [[nodiscard]] const ExperimentSummary* experiment(int number) const noexcept;
+  /// The hover curve of one torque compensation, or null.
+  [[nodiscard]] const HoverCurve* hoverCurve(control::TorqueCompensation t) const noexcept;
+};
+
+/// Runs the campaign. Throws std::invalid_argument for bad options (unknown experiment,
+/// seeds < 1), and whatever a stage throws (identification, an invalid scenario).
+[[nodiscard]] CampaignResult runCampaign(const CampaignOptions& options);
+
+/// The acceptance checks that the experiments in `r` allow (computed by runCampaign).
+[[nodiscard]] std::vector<AcceptanceCheck> acceptanceChecks(const CampaignResult& r);
+
+/// Human-readable summary: calibration, Table I (ours mean ± std beside the paper's), the
+/// hover curves, the ratios and checks, the wall time.
+[[nodiscard]] std::string formatCampaign(const CampaignResult& r);
+
+/// The JSON document of docs/results.md: {"experiments":[…],"hover":[…],…}.
+[[nodiscard]] std::string campaignJson(const CampaignResult& r);
+
+}  // namespace geaware::experiments

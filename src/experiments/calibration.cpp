@@ -1,0 +1,197 @@
+#include "geaware/experiments/calibration.hpp"
+
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "geaware/ident/fits.hpp"
+#include "geaware/ident/rig_logs.hpp"
+#include "geaware/model/units.hpp"
+
+namespace geaware::experiments {
+namespace {
+
+std::vector<double> grid(double from, double to, double step) {
+  std::vector<double> v;
+  for (int k = 0; from + k * step <= to + 1e-9; ++k) v.push_back(from + k * step);
+  return v;
+}
+
+/// Appends the rows of one platform sweep to `log`, with the time running on from the last
+/// row (each sweep starts at t = 0; the readers require increasing time, the fits ignore it).
+std::size_t appendSweep(const sim::ForceTorquePlatform& rig, const sim::PlatformSweep& sweep,
+                        std::uint64_t seed, ident::PlatformLog& log) {
+  const double t0 = log.t_s.empty() ? 0.0 : log.t_s.back() + 1.0;
+  return rig.sweep(sweep, seed, [&](const sim::PlatformRow& r) {
+    log.t_s.push_back(t0 + r.t_s);
+    log.h_m.push_back(r.h_m);
+    log.tilt_deg.push_back(r.tilt_deg);
+    for (std::size_t i = 0; i < 4; ++i) log.n_rpm[i].push_back(r.n_rpm[i]);
+    for (int a = 0; a < 3; ++a) {
+      log.f_N[static_cast<std::size_t>(a)].push_back(r.force_B[a]);
+      log.tau_Nm[static_cast<std::size_t>(a)].push_back(r.torque_B[a]);
+    }
+  });
+}
+
+/// The stand holds rotor 1 of the truth: its k_T, k_I (with its thrust spread), J_R and ESC.
+model::VehicleParams standVehicle(const model::VehicleParams& file_vehicle,
+                                  const sim::TruthParams& truth) {
+  model::VehicleParams v = file_vehicle;
+  v.rotor.k_T_N_per_rpm2 = truth.k_T_N_per_rpm2 * truth.thrust_multiplier[0];
+  v.rotor.k_I_Nm_per_rpm2 = truth.k_I_Nm_per_rpm2 * truth.thrust_multiplier[0];
+  v.rotor.J_R_kgm2 = truth.motor.J_R_kgm2;
+  v.throttle = truth.motor.throttle;
+  return v;
+}
+
+}  // namespace
+
+CalibrationSweeps CalibrationSweeps::defaults() {
+  CalibrationSweeps s;
+  // 1. Level board: the round trip's sweep (docs/identification.md), so that its documented
+  //    F_G tolerances apply to the campaign's calibration.
+  s.level.heights_m = grid(0.07, 1.0, 0.01);
+  s.level.tilts_deg = {0.0};
+  s.level.rpm = {9000.0, 12000.0, 15000.0};
+  // 2. Tilted board at SMALL tilts, 2–10°: J'(h) (eq. 24–26) is the slope of the leveling
+  //    torque in sin δ at small tilts, which is where a flying vehicle is; the truth, like the
+  //    paper's measurement, stops growing above ≈ 10°, so a 15° board would fit a smaller
+  //    slope. Heights from just above the lowest flight height to past the wake-merge collapse.
+  s.tilted.heights_m = grid(0.08, 0.40, 0.02);
+  s.tilted.tilts_deg = {2.0, 4.0, 6.0, 8.0, 10.0};
+  s.tilted.rpm = {9000.0, 12000.0, 15000.0};
+  // 3. Mixing: rpm differences on the roll, pitch and yaw rows, out of ground effect.
+  s.mixing.heights_m = {1.0, 1.5, 2.0};
+  s.mixing.tilts_deg = {0.0};
+  s.mixing.rpm = {9000.0, 12000.0, 15000.0};
+  s.mixing.rpm_diffs = {-1500.0, -750.0, 0.0, 750.0, 1500.0};
+  // 4. Stand: throttle steps over the whole range (speed steps also determine J_R).
+  s.stand_throttles = grid(0.0, 1.0, 0.1);
+  return s;
+}
+
+ControllerCalibration calibrateController(const model::VehicleParams& file_vehicle,
+                                          const sim::TruthParams& truth,
+                                          const CalibrationSweeps& sweeps) {
+  ControllerCalibration c;
+  const sim::RotorGeometry geometry = truth.rotorGeometry();
+  const sim::ForceTorquePlatform rig(geometry, truth.aero, sweeps.platform);
+
+  // The rigs' logs, in memory in the readers' format (no CSV round trip: the readers' checks
+  // are for files from the outside; these rows come straight from the simulator).
+  ident::PlatformLog platform;
+  platform.source = "virtual quadrotor platform (campaign calibration)";
+  c.platform_rows += appendSweep(rig, sweeps.level, 10 + sweeps.seed, platform);
+  c.platform_rows += appendSweep(rig, sweeps.tilted, 20 + sweeps.seed, platform);
+  c.platform_rows += appendSweep(rig, sweeps.mixing, 30 + sweeps.seed, platform);
+
+  ident::RotorStandLog stand_log;
+  stand_log.source = "virtual single-rotor stand (campaign calibration)";
+  const sim::RotorStand stand(standVehicle(file_vehicle, truth), sweeps.stand);
+  c.stand_rows = stand.sweep(sweeps.stand_throttles, 40 + sweeps.seed,
+                             [&](const sim::RotorStandRow& r) {
+                               stand_log.t_s.push_back(r.t_s);
+                               stand_log.throttle.push_back(r.throttle);
+                               stand_log.rpm.push_back(r.rpm);
+                               stand_log.thrust_N.push_back(r.thrust_N);
+                               stand_log.torque_Nm.push_back(r.torque_Nm);
+                             });
+
+  // The fits, with their default options (the tilt limit aside, see the sweeps).
+  const ident::RotorFit rotor = ident::fitRotorStand(stand_log);
+  const ident::AdditionalThrustFit thrust = ident::fitAdditionalThrust(platform);
+  const ident::MixingFit mixing = ident::fitMixing(platform, file_vehicle.diagonal_rotor_distance_m);
+  const double k_TY = mixing.k_TY_N_per_rpm2 ? mixing.k_TY_N_per_rpm2->value
+                                             : file_vehicle.rotor.k_TY_N_per_rpm2;
+  ident::LevelingFitOptions lo;
+  lo.max_tilt_deg = sweeps.tilt_limit_deg;
+  const ident::LevelingFit leveling = ident::fitLeveling(
+      platform, {thrust.k_T_N_per_rpm2.value, k_TY, file_vehicle.diagonal_rotor_distance_m}, lo);
+  for (const auto* w : {&rotor.warnings, &thrust.warnings, &mixing.warnings, &leveling.warnings}) {
+    c.warnings.insert(c.warnings.end(), w->begin(), w->end());
+  }
+
+  // Merge: stand first, then the platform (docs/identification.md, "Commands").
+  model::VehicleParams v = file_vehicle;
+  auto set = [&](const std::string& key, const std::string& unit, const std::string& source,
+                 double& field, const ident::Estimate& e) {
+    c.parameters.push_back({key, unit, source, field, e.value, e.std_error});
+    field = e.value;
+  };
+  const std::string kStand = "single-rotor stand";
+  const std::string kLevel = "platform, level board";
+  const std::string kMix = "platform, rpm differences";
+  const std::string kTilt = "platform, tilted board";
+  // k_T and k_I of the stand are shown but superseded by the platform's (the scale of M_G and
+  // F_G belong to the platform's k_T).
+  c.parameters.push_back({"rotor.k_T_N_per_rpm2 (stand, not used)", "N/rpm²", kStand,
+                          file_vehicle.rotor.k_T_N_per_rpm2, rotor.k_T_N_per_rpm2.value,
+                          rotor.k_T_N_per_rpm2.std_error});
+  set("rotor.J_R_kgm2", "kg·m²", kStand, v.rotor.J_R_kgm2,
+      rotor.J_R_kgm2 ? *rotor.J_R_kgm2 : ident::Estimate{file_vehicle.rotor.J_R_kgm2, 0.0});
+  set("throttle_curve.c2_rpm2", "rpm²", kStand, v.throttle.c2_rpm2, rotor.c2_rpm2);
+  set("throttle_curve.c1_rpm2", "rpm²", kStand, v.throttle.c1_rpm2, rotor.c1_rpm2);
+  set("throttle_curve.c0_rpm2", "rpm²", kStand, v.throttle.c0_rpm2, rotor.c0_rpm2);
+  set("rotor.k_T_N_per_rpm2", "N/rpm²", kLevel, v.rotor.k_T_N_per_rpm2, thrust.k_T_N_per_rpm2);
+  set("ground_effect.additional_thrust.g1_m2", "m²", kLevel, v.additional_thrust.g1_m2,
+      thrust.g1_m2);
+  set("ground_effect.additional_thrust.g2_m2", "m²", kLevel, v.additional_thrust.g2_m2,
+      thrust.g2_m2);
+  if (mixing.k_TX_N_per_rpm2) {
+    set("rotor.k_TX_N_per_rpm2", "N/rpm²", kMix, v.rotor.k_TX_N_per_rpm2, *mixing.k_TX_N_per_rpm2);
+  }
+  if (mixing.k_TY_N_per_rpm2) {
+    set("rotor.k_TY_N_per_rpm2", "N/rpm²", kMix, v.rotor.k_TY_N_per_rpm2, *mixing.k_TY_N_per_rpm2);
+  }
+  if (mixing.k_I_Nm_per_rpm2) {
+    set("rotor.k_I_Nm_per_rpm2", "N·m/rpm²", kMix, v.rotor.k_I_Nm_per_rpm2,
+        *mixing.k_I_Nm_per_rpm2);
+  }
+  set("ground_effect.leveling_torque.g3_m", "m", kTilt, v.leveling_torque.g3_m, leveling.g3_m);
+  set("ground_effect.leveling_torque.g4_m2", "m²", kTilt, v.leveling_torque.g4_m2,
+      leveling.g4_m2);
+  set("ground_effect.leveling_torque.scale_m4", "m⁴", kTilt, v.leveling_torque.scale_m4,
+      leveling.scale_m4);
+  v.name = file_vehicle.name + " (identified on the virtual rigs)";
+  if (const auto errors = v.validate(); !errors.empty()) {
+    std::string what = "calibration: the identified parameters are not a valid vehicle:";
+    for (const auto& e : errors) what += "\n  " + e.field + " = " + e.value + ": " + e.expected;
+    throw std::invalid_argument(what);
+  }
+  c.vehicle = v;
+
+  // The curves against the noise-free truth (as `geaware rig calibrate` and the round-trip
+  // test compute it).
+  sim::PlatformParams quiet = sweeps.platform;
+  quiet.force_noise_N = 0.0;
+  quiet.torque_noise_Nm = 0.0;
+  const sim::ForceTorquePlatform clean(geometry, truth.aero, quiet);
+  double k_sum = 0.0;
+  for (double k : geometry.k_T_N_per_rpm2) k_sum += k;
+  const double n = c.torque_rpm;
+  const std::array<double, 4> speeds{n, n, n, n};
+  const double sin_d = std::sin(c.torque_tilt_deg * model::kDegToRad);
+  auto fg = [](const model::VehicleParams& p, double h) {
+    return p.additional_thrust.g2_m2 / (h * h + p.additional_thrust.g1_m2);
+  };
+  auto torque = [&](const model::VehicleParams& p, double h) {
+    const double T = 4.0 * p.rotor.k_T_N_per_rpm2 * n * n;
+    return -ident::levelingCoefficient(p.leveling_torque.g3_m, p.leveling_torque.g4_m2,
+                                       p.leveling_torque.scale_m4, h) *
+           T * sin_d;
+  };
+  for (double h : grid(0.07, 1.0, 0.01)) {
+    const double truth_fg = clean.wrench(h, 0.0, speeds).wrench.force_B.z() / (k_sum * n * n) - 1.0;
+    c.thrust_ratio.push_back({h, truth_fg, fg(v, h), fg(file_vehicle, h)});
+  }
+  for (double h : grid(0.08, 0.5, 0.01)) {
+    const double truth_tau = clean.wrench(h, c.torque_tilt_deg, speeds).wrench.torque_B.y();
+    c.leveling_torque.push_back({h, truth_tau, torque(v, h), torque(file_vehicle, h)});
+  }
+  return c;
+}
+
+}  // namespace geaware::experiments
