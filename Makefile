@@ -23,7 +23,7 @@ build: configure
 
 demo: build
 	$(BUILD_DIR)/apps/geaware/geaware bench --report $(BUILD_DIR)/bench-report --json $(BUILD_DIR)/bench-results.json
-	@echo "report: $(BUILD_DIR)/bench-report/index.html (open it in a browser)"
+	@echo "report: $(BUILD_DIR)/bench-report/bench.html (open it in a browser)"
 
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
