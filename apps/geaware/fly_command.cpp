@@ -20,6 +20,7 @@
 #include "geaware/experiments/flight_log.hpp"
 #include "geaware/io/vehicle_file.hpp"
 #include "geaware/experiments/scenario_file.hpp"
+#include "geaware/io/json.hpp"
 #include "geaware/model/units.hpp"
 #include "geaware/neural/residual_network.hpp"
 #include "geaware/neural/weights_file.hpp"
@@ -29,6 +30,8 @@
 
 namespace geaware::cli {
 namespace {
+
+using io::jsonString;
 
 struct FlyOptions {
   std::string scenario;
@@ -54,21 +57,6 @@ struct FlyOptions {
 
 model::VehicleParams loadVehicle(const std::string& path) {
   return path.empty() ? io::builtinVehicle() : io::loadVehicleFile(path);
-}
-
-std::string jsonString(const std::string& s) {
-  std::string r = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') {
-      r += '\\';
-      r += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      r += fmt::format("\\u{:04x}", static_cast<int>(c));
-    } else {
-      r += c;
-    }
-  }
-  return r + "\"";
 }
 
 std::string jsonNumber(double v) { return std::isfinite(v) ? fmt::format("{}", v) : "null"; }

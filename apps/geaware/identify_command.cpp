@@ -4,6 +4,8 @@
 
 #include "identify_command.hpp"
 
+#include "geaware/io/json.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -25,6 +27,8 @@
 
 namespace geaware::cli {
 namespace {
+
+using io::jsonString;
 
 struct IdentifyOptions {
   std::string kind;                  ///< rotor, platform, flight, correlations
@@ -61,21 +65,6 @@ struct Outcome {
   ident::VehicleUpdate update;
   std::string json_extra;  ///< additional JSON members (",\"key\":value…")
 };
-
-std::string jsonString(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      out += fmt::format("\\u{:04x}", static_cast<int>(c));
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
 
 std::string jsonNumber(double v) { return std::isfinite(v) ? fmt::format("{:.9g}", v) : "null"; }
 

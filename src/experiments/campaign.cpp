@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "geaware/experiments/flight_pool.hpp"
+#include "geaware/io/json.hpp"
 #include "geaware/traj/hover_descent.hpp"
 #include "geaware/traj/lemniscate.hpp"
 
@@ -409,21 +410,7 @@ std::string formatCampaign(const CampaignResult& r) {
 namespace {
 
 std::string jnum(double v) { return std::isfinite(v) ? fmt::format("{}", v) : "null"; }
-
-std::string jstr(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      out += fmt::format("\\u{:04x}", static_cast<int>(c));
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
+std::string jstr(const std::string& s) { return io::jsonString(s); }
 
 std::string metricsJson(const TableMetrics& m) {
   return fmt::format("\"rmse_xy_cm\":{},\"rmse_z_cm\":{},\"rmse_all_cm\":{},\"max_cm\":{},\"std_cm\":{}",
