@@ -1,11 +1,15 @@
 // Micro-benchmarks of the truth plant (issue 3, "Performance"):
 //  - one plant step: RK4, per-rotor aerodynamics with ground effect, motors/battery, ground-strike
-//    check (target ≤ 0.5 µs median);
-//  - 60 s of simulated time at 1 kHz, throttles at hover over flat ground (target ≥ 1000× real
-//    time). The sensors (IMU, motion capture, lattice ranger) are not in this loop yet; they join
-//    it when the sensor models land. The same flight over a height map shows what a height map
-//    costs the plant alone (per-rotor heights, normals and strike checks).
-// Run: build/bench/geaware_bench --benchmark_filter=Plant --benchmark_repetitions=5
+//    check (target ≤ 0.5 µs median). Arg 1: the default plant (ground-effect factors once per
+//    step, held over the RK4 stages); 2: the same with them evaluated at every stage
+//    (PlantConfig::ground_effect_per_stage); 0: the floor without aerodynamics and gravity;
+//  - 60 s of simulated time at 1 kHz, throttles at hover, the plant alone over flat ground and
+//    over a height map (what a height map costs the plant: per-rotor heights, normals and strike
+//    checks). The whole loop with every sensor and the log is BM_FlightSensorsAndPlant
+//    (flight_bench.cpp, target ≥ 1000× real time);
+//  - one lattice-ranger ray over flat ground and over a height map.
+// Results and commands: docs/benchmarks-sim.md. Run:
+// build/bench/geaware_bench --benchmark_filter='Plant|BareRk4|RayCast' --benchmark_repetitions=5
 //      --benchmark_report_aggregates_only=true
 
 #include <array>
@@ -78,6 +82,7 @@ void BM_PlantStep(benchmark::State& state) {
     cfg.rotor_aerodynamics = false;
     cfg.gravity = false;
   }
+  cfg.ground_effect_per_stage = state.range(0) == 2;
   Plant plant = makePlant(ground, 0.3, cfg);
   double t = plant.throttleForSteadySpeed(hoverRpm(plant.params()));
   const std::array<double, 4> throttle{t, t, t, t};
@@ -91,9 +96,11 @@ void BM_PlantStep(benchmark::State& state) {
       state.ResumeTiming();
     }
   }
-  state.SetLabel(cfg.rotor_aerodynamics ? "full plant" : "floor: no aerodynamics, no gravity");
+  state.SetLabel(!cfg.rotor_aerodynamics       ? "floor: no aerodynamics, no gravity"
+                 : cfg.ground_effect_per_stage ? "full plant, ground effect per RK4 stage"
+                                               : "full plant");
 }
-BENCHMARK(BM_PlantStep)->Arg(1)->Arg(0);
+BENCHMARK(BM_PlantStep)->Arg(1)->Arg(2)->Arg(0);
 
 /// The reference floor the issue quotes: a bare 13-state RK4 step of a rigid body under
 /// gravity and a constant body wrench (no motors, no terrain, no contributions).
@@ -151,7 +158,7 @@ void BM_PlantHover60sHeightMap(benchmark::State& state) {
 BENCHMARK(BM_PlantHover60sHeightMap)->Unit(benchmark::kMillisecond);
 
 /// One downward ray (within a 45° cone, as a lattice ranger's) from 0.3 m: the closed form on
-/// flat ground and the slope-bounded march on the rolling height map.
+/// flat ground and the exact cell walk on the rolling height map.
 void rayCasts(benchmark::State& state, const geaware::sim::Terrain& terrain) {
   std::vector<Eigen::Vector3d> dirs;
   for (int j = 0; j < 16; ++j) {

@@ -12,7 +12,10 @@ Motors::Motors(const TruthParams& params, const std::array<double, 4>& initial_r
     : motor_(params.motor),
       battery_(params.battery),
       voltage_V_(params.battery.nominal_voltage_V),
-      charge_used_Ah_(params.battery.initial_charge_used_Ah) {
+      charge_used_Ah_(params.battery.initial_charge_used_Ah),
+      inv_time_constant_(1.0 / params.motor.time_constant_s),
+      inv_capacity_(1.0 / params.battery.capacity_Ah),
+      inv_nominal_voltage_(1.0 / params.battery.nominal_voltage_V) {
   const RotorGeometry g = params.rotorGeometry();
   for (std::size_t i = 0; i < 4; ++i) {
     k_I_[i] = g.k_I_Nm_per_rpm2[i];
@@ -35,7 +38,7 @@ Motors::Motors(const TruthParams& params, const std::array<double, 4>& initial_r
 double Motors::openCircuitVoltage() const noexcept {
   // Linear discharge curve; past the rated capacity the pack is held at its empty voltage (a
   // runner should end the flight long before: the model is not meant for deep discharge).
-  const double used = std::clamp(charge_used_Ah_ / battery_.capacity_Ah, 0.0, 1.0);
+  const double used = std::clamp(charge_used_Ah_ * inv_capacity_, 0.0, 1.0);
   return battery_.full_voltage_V - (battery_.full_voltage_V - battery_.empty_voltage_V) * used;
 }
 
@@ -76,7 +79,14 @@ void Motors::beginStep(const std::array<double, 4>& throttle, double dt_s) noexc
     current_A_ = currentAt(n_rpm_, voltage_V_);
     voltage_V_ = openCircuitVoltage() - battery_.internal_resistance_ohm * current_A_;
   }
-  for (std::size_t i = 0; i < 4; ++i) n_ss_rpm_[i] = steadySpeedRpm(throttle[i], voltage_V_);
+  // steadySpeedRpm() for the four rotors, with the voltage scale computed once.
+  const auto& c = motor_.throttle;
+  const double scale = battery_.enabled ? voltage_V_ * inv_nominal_voltage_ : 1.0;
+  for (std::size_t i = 0; i < 4; ++i) {
+    const double t = std::clamp(throttle[i], 0.0, 1.0);
+    const double n = std::sqrt(std::max((c.c2_rpm2 * t + c.c1_rpm2) * t + c.c0_rpm2, 0.0));
+    n_ss_rpm_[i] = std::clamp(n * scale, motor_.min_speed_rpm, motor_.max_speed_rpm);
+  }
   if (dt_s != dt_s_) {
     // The decays at RK4's stage times, computed once per step length (a fixed-step run pays
     // for the exponentials once).
@@ -86,46 +96,12 @@ void Motors::beginStep(const std::array<double, 4>& throttle, double dt_s) noexc
   }
 }
 
-void Motors::speedsAt(double s, std::array<double, 4>& n_rpm,
-                      std::array<double, 4>& n_dot_rpm_per_s) const noexcept {
-  const double decay = s == 0.0           ? 1.0
-                       : s == 0.5 * dt_s_ ? decay_half_
-                       : s == dt_s_       ? decay_full_
-                                          : std::exp(-s / motor_.time_constant_s);
-  for (std::size_t i = 0; i < 4; ++i) {
-    n_rpm[i] = n_ss_rpm_[i] + (n_rpm_[i] - n_ss_rpm_[i]) * decay;
-    n_dot_rpm_per_s[i] = (n_ss_rpm_[i] - n_rpm[i]) / motor_.time_constant_s;
-  }
-}
-
 void Motors::endStep() noexcept {
   std::array<double, 4> n_dot{};
   std::array<double, 4> n_end{};
   speedsAt(dt_s_, n_end, n_dot);
   n_rpm_ = n_end;
   if (battery_.enabled) charge_used_Ah_ += current_A_ * dt_s_ / 3600.0;
-}
-
-Wrench motorTorques(double J_R_kgm2, const std::array<double, 4>& yaw_sign,
-                    const std::array<double, 4>& n_rpm,
-                    const std::array<double, 4>& n_dot_rpm_per_s, const Eigen::Vector3d& w_B,
-                    bool reaction, bool gyroscopic) noexcept {
-  Wrench w;
-  if (reaction) {
-    double tz = 0.0;
-    for (std::size_t i = 0; i < 4; ++i) tz += yaw_sign[i] * n_dot_rpm_per_s[i];
-    w.torque_B.z() = J_R_kgm2 * model::kRpmToRadPerSec * tz;
-  }
-  if (gyroscopic) {
-    // Total rotor angular momentum along z_B, h = Σ J_R·Ω_i·d_i with d_i = −yaw_i; the torque
-    // on the body is −ω × h·z_B = h·(−ω_y, ω_x, 0).
-    double h = 0.0;
-    for (std::size_t i = 0; i < 4; ++i) h -= yaw_sign[i] * n_rpm[i];
-    h *= J_R_kgm2 * model::kRpmToRadPerSec;
-    w.torque_B.x() += -h * w_B.y();
-    w.torque_B.y() += h * w_B.x();
-  }
-  return w;
 }
 
 }  // namespace geaware::sim

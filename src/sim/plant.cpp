@@ -39,15 +39,30 @@ class RotorAeroContribution final : public Contribution {
       : aero_(geometry, params) {}
   [[nodiscard]] const char* name() const noexcept override { return "rotor_aerodynamics"; }
   [[nodiscard]] Wrench wrench(const ContributionContext& ctx) noexcept override {
-    last_ = aero_.compute(ctx.n_rpm, ctx.R_WB, ctx.body.v_W - ctx.wind_W, ctx.body.w_B,
-                          ctx.surroundings);
+    return stageWrench(ctx, true);
+  }
+  /// The wrench at one RK4 stage; the per-rotor outputs (last()) are kept only when asked for
+  /// (the plant asks at the last stage, the one lastAero() reports).
+  [[nodiscard]] Wrench stageWrench(const ContributionContext& ctx, bool keep_outputs) noexcept {
+    const Eigen::Vector3d v_air_W = ctx.body.v_W - ctx.wind_W;
+    if (!held_) factors_ = aero_.groundFactors(ctx.surroundings.ground_distance_m);
+    if (!keep_outputs) return aero_.wrench(ctx.n_rpm, ctx.R_WB, v_air_W, ctx.body.w_B, factors_);
+    last_ = aero_.compute(ctx.n_rpm, ctx.R_WB, v_air_W, ctx.body.w_B, factors_);
     return last_.wrench;
   }
   [[nodiscard]] const RotorAeroOutput& last() const noexcept { return last_; }
+  [[nodiscard]] const RotorAerodynamics& model() const noexcept { return aero_; }
+  /// Use these ground factors at every evaluation until the next hold() (once per step).
+  void hold(const RotorGroundFactors& factors) noexcept {
+    factors_ = factors;
+    held_ = true;
+  }
 
  private:
   RotorAerodynamics aero_;
   RotorAeroOutput last_;
+  RotorGroundFactors factors_;
+  bool held_ = false;  // false: from ctx.surroundings at every evaluation
 };
 
 /// Motor reaction (J_R·ṅ) and gyroscopic torques.
@@ -158,11 +173,15 @@ Plant::Plant(const TruthParams& params, std::shared_ptr<const Terrain> terrain,
     contributions_.push_back(std::move(motor));
   }
   builtin_count_ = contributions_.size();
+  // Only the aerodynamics evaluated per stage and added contributions read the per-stage
+  // distances (addContribution switches them back on).
+  stage_surroundings_ = config_.ground_effect_per_stage;
 
   // The CoM state from the geometric-centre state (see the header).
   state_ = initial;
   state_.q_WB.normalize();
-  const Eigen::Matrix3d R = state_.q_WB.toRotationMatrix();
+  R_WB_ = state_.q_WB.toRotationMatrix();
+  const Eigen::Matrix3d& R = R_WB_;
   const Eigen::Vector3d& c = params_.cog_offset_B;
   body_.p_W = state_.p_W + R * c;
   body_.v_W = state_.v_W + R * state_.w_B.cross(c);
@@ -185,12 +204,34 @@ Plant::Plant(const TruthParams& params, std::shared_ptr<const Terrain> terrain,
 
 void Plant::sampleTerrain() noexcept {
   if (terrain_ == nullptr || flat_z_m_) return;
-  const Eigen::Matrix3d R = body_.q_WB.toRotationMatrix();
+  const Eigen::Matrix3d& R = R_WB_;
   for (std::size_t i = 0; i < 4; ++i) {
     const Eigen::Vector3d c = body_.p_W + R * rotor_from_com_B_[i];
     ground_sample_W_[i] = Eigen::Vector3d(c.x(), c.y(), terrain_->heightAt(c.x(), c.y()));
     ground_normal_W_[i] = terrain_->normalAt(c.x(), c.y());
   }
+}
+
+double Plant::groundUnder(std::size_t i, const Eigen::Vector3d& c) const noexcept {
+  if (flat_z_m_) return *flat_z_m_;
+  if (terrain_ == nullptr) return -std::numeric_limits<double>::infinity();  // infinitely far
+  // The tangent plane at the step's sample: z = H0 − (n_x·Δx + n_y·Δy)/n_z.
+  const Eigen::Vector3d& g = ground_sample_W_[i];
+  const Eigen::Vector3d& n = ground_normal_W_[i];
+  return g.z() - (n.x() * (c.x() - g.x()) + n.y() * (c.y() - g.y())) / n.z();
+}
+
+std::array<double, 4> Plant::midStepGroundDistances(double dt_s) const noexcept {
+  // Rotor centre c_i = p + R·r_i moves at v + ω_W × R·r_i; half a step along that velocity.
+  const Eigen::Matrix3d& R = R_WB_;
+  const Eigen::Vector3d w_W = R * body_.w_B;
+  std::array<double, 4> d{};
+  for (std::size_t i = 0; i < 4; ++i) {
+    const Eigen::Vector3d r_W = R * rotor_from_com_B_[i];
+    const Eigen::Vector3d c = body_.p_W + r_W + (0.5 * dt_s) * (body_.v_W + w_W.cross(r_W));
+    d[i] = c.z() - groundUnder(i, c);
+  }
+  return d;
 }
 
 const RotorAeroOutput& Plant::lastAero() const noexcept {
@@ -202,6 +243,7 @@ void Plant::addContribution(std::unique_ptr<Contribution> contribution) {
   if (contribution == nullptr)
     throw std::invalid_argument("Plant::addContribution: null contribution");
   contributions_.push_back(std::move(contribution));
+  stage_surroundings_ = true;
 }
 
 StepResult Plant::step(const std::array<double, 4>& throttle) {
@@ -233,10 +275,13 @@ StepResult Plant::step(const std::array<double, 4>& throttle, double dt_s) {
   }
   if (result.throttle_fault) ++throttle_faults_;
 
-  // 2. Fix the motor targets and the disturbances' noise for this step.
+  // 2. Fix the motor targets, the ground-effect factors (at the rotor distances predicted for
+  //    mid-step, see plant.hpp) and the disturbances' noise for this step.
   t0_s_ = state_.t_s;
   motors_.beginStep(t, dt_s);
   sampleTerrain();
+  if (aero_ != nullptr && !config_.ground_effect_per_stage)
+    aero_->hold(aero_->model().groundFactors(midStepGroundDistances(dt_s)));
   for (std::size_t k = builtin_count_; k < contributions_.size(); ++k)
     contributions_[k]->beginStep(t0_s_, dt_s, state_);
 
@@ -244,14 +289,33 @@ StepResult Plant::step(const std::array<double, 4>& throttle, double dt_s) {
   //    stage's derivative (time t + dt, state x + dt·k3) is kept for a_W, ω̇ and lastAero(): it
   //    is within O(dt²) of the derivative at the final state (≈ 1e-5 m/s² at 1 kHz, far below
   //    any sensor's noise) and saves a fifth evaluation of every contribution.
-  RigidBodyDerivative end;
-  body_ = rk4Step(body_, 0.0, dt_s, [this, &end](double s, const RigidBodyState& x) {
-    end = evaluate(s, x);
-    return end;
-  });
+  //    The scheme is rk4Step's, written out so that each stage state is built where the
+  //    contributions read it (ctx_.body) rather than copied there: copying freshly written
+  //    stage states stalls on store forwarding (≈ 5 % of the step).
+  stage_last_s_ = dt_s;
+  const double h = dt_s;
+  RigidBodyDerivative k1;
+  RigidBodyDerivative k2;
+  RigidBodyDerivative k3;
+  RigidBodyDerivative k4;
+  ctx_.body = body_;
+  evaluate(0.0, k1);
+  ctx_.body = advance(body_, k1, 0.5 * h);
+  evaluate(0.5 * h, k2);
+  ctx_.body = advance(body_, k2, 0.5 * h);
+  evaluate(0.5 * h, k3);
+  ctx_.body = advance(body_, k3, h);
+  evaluate(h, k4);
+  RigidBodyDerivative sum;
+  sum.p_dot = k1.p_dot + 2.0 * k2.p_dot + 2.0 * k3.p_dot + k4.p_dot;
+  sum.v_dot = k1.v_dot + 2.0 * k2.v_dot + 2.0 * k3.v_dot + k4.v_dot;
+  sum.q_dot = k1.q_dot + 2.0 * k2.q_dot + 2.0 * k3.q_dot + k4.q_dot;
+  sum.w_dot = k1.w_dot + 2.0 * k2.w_dot + 2.0 * k3.w_dot + k4.w_dot;
+  body_ = advance(body_, sum, h / 6.0);
+  body_.q_WB.normalize();
   motors_.endStep();
   state_.t_s = t0_s_ + dt_s;
-  publish(end);
+  publish(k4);
 
   // 5. Ground strikes.
   if (config_.ground_strikes && terrain_ != nullptr) {
@@ -261,38 +325,32 @@ StepResult Plant::step(const std::array<double, 4>& throttle, double dt_s) {
   return result;
 }
 
-RigidBodyDerivative Plant::evaluate(double s, const RigidBodyState& x) {
+void Plant::evaluate(double s, RigidBodyDerivative& out) {
+  const RigidBodyState& x = ctx_.body;
   ctx_.t_s = t0_s_ + s;
-  ctx_.body = x;
   ctx_.R_WB = rotationOf(x.q_WB);
   motors_.speedsAt(s, ctx_.n_rpm, ctx_.n_dot_rpm_per_s);
-  for (std::size_t i = 0; i < 4; ++i) {
-    const Eigen::Vector3d c = x.p_W + ctx_.R_WB * rotor_from_com_B_[i];
-    const Eigen::Vector3d& n = ground_normal_W_[i];
-    double ground_z = -std::numeric_limits<double>::infinity();  // no terrain: infinitely far
-    if (flat_z_m_) {
-      ground_z = *flat_z_m_;
-    } else if (terrain_ != nullptr) {
-      // The tangent plane at the step's sample: z = H0 − (n_x·Δx + n_y·Δy)/n_z.
-      const Eigen::Vector3d& g = ground_sample_W_[i];
-      ground_z = g.z() - (n.x() * (c.x() - g.x()) + n.y() * (c.y() - g.y())) / n.z();
+  if (stage_surroundings_) {
+    for (std::size_t i = 0; i < 4; ++i) {
+      const Eigen::Vector3d c = x.p_W + ctx_.R_WB * rotor_from_com_B_[i];
+      ctx_.surroundings.ground_distance_m[i] = c.z() - groundUnder(i, c);
+      ctx_.surroundings.ground_normal_W[i] = ground_normal_W_[i];
     }
-    ctx_.surroundings.ground_distance_m[i] = c.z() - ground_z;
-    ctx_.surroundings.ground_normal_W[i] = n;
   }
   ctx_.wind_W = wind_W_;
   // Summed in the order of contributions_ (built-ins first), the same in every run.
   Wrench total;
   if (gravity_ != nullptr) total += gravity_->wrench(ctx_);
-  if (aero_ != nullptr) total += aero_->wrench(ctx_);
+  if (aero_ != nullptr) total += aero_->stageWrench(ctx_, s == stage_last_s_);
   if (motor_torques_ != nullptr) total += motor_torques_->wrench(ctx_);
   for (std::size_t k = builtin_count_; k < contributions_.size(); ++k)
     total += contributions_[k]->wrench(ctx_);
-  return rigidBodyDerivative(x, ctx_.R_WB, total, mass_);
+  out = rigidBodyDerivative(x, ctx_.R_WB, total, mass_);
 }
 
 void Plant::publish(const RigidBodyDerivative& end) {
-  const Eigen::Matrix3d R = body_.q_WB.toRotationMatrix();
+  R_WB_ = body_.q_WB.toRotationMatrix();
+  const Eigen::Matrix3d& R = R_WB_;
   const Eigen::Vector3d& c = params_.cog_offset_B;
   const Eigen::Vector3d& w = body_.w_B;
   state_.q_WB = body_.q_WB;
@@ -305,7 +363,7 @@ void Plant::publish(const RigidBodyDerivative& end) {
 }
 
 std::optional<Crash> Plant::detectStrike() const noexcept {
-  const Eigen::Matrix3d R = state_.q_WB.toRotationMatrix();
+  const Eigen::Matrix3d& R = R_WB_;  // state_.q_WB is body_.q_WB
   const Terrain& terrain = *terrain_;
   std::optional<Crash> worst;
   const auto check = [&](const Eigen::Vector3d& pt, StrikePart part, int index) {

@@ -59,11 +59,20 @@ std::optional<model::RangerFrame> LatticeRanger::sample(const PlantState& s, con
     return std::nullopt;
   }
   if (!clock_.due(s.t_s)) return std::nullopt;
-  return measure(s, terrain);
+  // Filled in place: a frame is 2.3 kB, and a copy per frame is a measurable part of its cost.
+  std::optional<model::RangerFrame> frame(std::in_place, blank_);
+  measureInto(*frame, s, terrain);
+  return frame;
 }
 
 model::RangerFrame LatticeRanger::measure(const PlantState& s, const Terrain* terrain) noexcept {
   model::RangerFrame f = blank_;
+  measureInto(f, s, terrain);
+  return f;
+}
+
+void LatticeRanger::measureInto(model::RangerFrame& f, const PlantState& s,
+                                const Terrain* terrain) noexcept {
   f.t_s = s.t_s;
   const Eigen::Matrix3d R_WB = s.q_WB.normalized().toRotationMatrix();
   const Eigen::Vector3d origin_W = s.p_W + R_WB * params_.mount_B;
@@ -85,6 +94,8 @@ model::RangerFrame LatticeRanger::measure(const PlantState& s, const Terrain* te
     n_B = R_WB.transpose() * n_W;
     c = n_W.dot(Eigen::Vector3d(0.0, 0.0, terrain->heightAt(0.0, 0.0)) - origin_W);
   }
+  // A height map is cast against directly (no virtual calls per zone).
+  const auto* map = n_B ? nullptr : dynamic_cast<const HeightMap*>(terrain);
 
   for (int k = 0; k < zones; ++k) {
     const auto idx = static_cast<std::size_t>(k);
@@ -95,31 +106,44 @@ model::RangerFrame LatticeRanger::measure(const PlantState& s, const Terrain* te
       f.valid[idx] = true;
       continue;
     }
-    // 2. The true range along the zone's centre ray and the cosine of the incidence angle.
+    // 2. The true range along the zone's centre ray, and whether it meets the surface beyond
+    //    the incidence limit (cos(incidence) below cos(max_incidence_rad)).
     double r = 0.0;
-    double cos_incidence = 0.0;
+    bool grazing = false;
     if (n_B) {
       const double dn = n_B->dot(dir_B_[idx]);
       if (!(dn < 0.0)) continue;  // looking away from the plane
       r = c / dn;
-      cos_incidence = -dn;
+      grazing = -dn < min_cos_incidence_;
     } else {
       if (terrain == nullptr) continue;
       const Eigen::Vector3d dir_W = R_WB * dir_B_[idx];
-      const std::optional<double> hit = terrain->rayCast(origin_W, dir_W, r_max);
-      if (!hit) continue;
-      r = *hit;
-      const Eigen::Vector3d p_hit = origin_W + r * dir_W;
-      cos_incidence = -dir_W.dot(terrain->normalAt(p_hit.x(), p_hit.y()));
+      if (map != nullptr) {
+        // The height map's own cast gives ∇H at the hit. cos(incidence) = s/√(1 + |∇H|²) with
+        // s = −d·(−∇H, 1), tested as s ≥ 0 and s² ≥ cos²(limit)·(1 + |∇H|²) (the limit is
+        // ≤ 90°): no square root, no division.
+        const std::optional<HeightMapHit> hit = map->rayHitUnit(origin_W, dir_W, r_max);
+        if (!hit) continue;
+        r = hit->distance_m;
+        const Eigen::Vector2d& g = hit->gradient;
+        const double s_inc = dir_W.x() * g.x() + dir_W.y() * g.y() - dir_W.z();
+        grazing = !(s_inc >= 0.0 && s_inc * s_inc >= min_cos_incidence_ * min_cos_incidence_ *
+                                                         (1.0 + g.squaredNorm()));
+      } else {
+        const std::optional<double> hit = terrain->rayCast(origin_W, dir_W, r_max);
+        if (!hit) continue;
+        r = *hit;
+        const Eigen::Vector3d p_hit = origin_W + r * dir_W;
+        grazing = -dir_W.dot(terrain->normalAt(p_hit.x(), p_hit.y())) < min_cos_incidence_;
+      }
     }
     // 3. Out of the working range, or grazing: no return.
-    if (!(r >= r_min && r <= r_max) || cos_incidence < min_cos_incidence_) continue;
+    if (!(r >= r_min && r <= r_max) || grazing) continue;
     // 4. Range noise growing with range.
     const double measured = r + (params_.noise_floor_m + params_.noise_fraction * r) * noise_.normal();
     f.range_m[idx] = measured > 0.0 ? measured : 0.0;
     f.valid[idx] = true;
   }
-  return f;
 }
 
 }  // namespace geaware::sim

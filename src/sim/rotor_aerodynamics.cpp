@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -102,6 +103,15 @@ RotorAerodynamics::RotorAerodynamics(const RotorGeometry& geometry, const RotorA
   recirc_sq_ = params.recirculation_height_m * params.recirculation_height_m;
   inv_drag_height_sq_ = 1.0 / (params.drag_ground_height_m * params.drag_ground_height_m);
   vi_per_rpm_ = params.induced_velocity_mps / params.induced_velocity_ref_rpm;
+  inv_range_ = 1.0 / params.ground_effect_range_m;
+  for (std::size_t i = 0; i < 4; ++i) {
+    const auto k = static_cast<Eigen::Index>(i);
+    r_x_[k] = geometry.position_B[i].x();
+    r_y_[k] = geometry.position_B[i].y();
+    r_z_[k] = geometry.position_B[i].z();
+    k_T_[k] = geometry.k_T_N_per_rpm2[i];
+    spin_k_I_[k] = geometry.spin[i] * geometry.k_I_Nm_per_rpm2[i];
+  }
   // z*: the peak of the (unimodal) rotor-resolved term on [min distance, merge height], by
   // golden-section search (once, here).
   double lo = params.min_ground_distance_m;
@@ -140,65 +150,103 @@ double RotorAerodynamics::collective(double z) const noexcept {
          (t1 * t2 * t3);
 }
 
-double RotorAerodynamics::rotorResolvedRaw(double z) const noexcept {
+void RotorAerodynamics::rotorResolvedTerms(const Eigen::Array4d& z, Eigen::Array4d& num,
+                                           Eigen::Array4d& den) const noexcept {
   // 1. Cheeseman & Bennett 1955: T_IGE/T_OGE = 1/(1 − (R/4z)²); its increment ≈ (R/4z)²,
   //    regularised with a core so that it stays finite as z → 0.
   // 2. Impingement of the rotor's own slipstream while it reaches the surface as a separate
   //    jet: a ramp A·(z_m − z), smoothly zero above the wake-merge height z_m.
   // 3. Recirculation very close to the surface: the outwash is trapped and re-ingested, the
   //    rotor-resolved gain stops growing, factor 1/(1 + (z_r/z)⁴) = z⁴/(z⁴ + z_r⁴); below its
-  //    peak z* the caller holds it at the peak (rotorResolved), so a lower rotor never gets
+  //    peak z* the caller holds it at the peak (groundFactors), so a lower rotor never gets
   //    LESS than a higher one and the leveling torque fades at touchdown instead of reversing.
-  // Steps 1–3 share one division: (num/(z²+c²) + ramp)·z⁴/(z⁴+z_r⁴).
-  const double z2 = z * z;
-  const double core = z2 + image_core_sq_;
-  const double x = params_.wake_merge_height_m - z;
-  const double ramp =
-      params_.impingement_slope_per_m * 0.5 * (x + std::sqrt(x * x + merge_soft_sq_));
-  const double z4 = z2 * z2;
-  return (image_num_ + ramp * core) * z4 / (core * (z4 + recirc_sq_ * recirc_sq_));
+  // Steps 1–3 over one denominator: l = (num/(z²+c²) + ramp)·z⁴/(z⁴+z_r⁴) = num/den.
+  const Eigen::Array4d z2 = z * z;
+  const Eigen::Array4d core = z2 + image_core_sq_;
+  const Eigen::Array4d x = params_.wake_merge_height_m - z;
+  const Eigen::Array4d ramp =
+      params_.impingement_slope_per_m * 0.5 * (x + (x * x + merge_soft_sq_).sqrt());
+  const Eigen::Array4d z4 = z2 * z2;
+  num = (image_num_ + ramp * core) * z4;
+  den = core * (z4 + recirc_sq_ * recirc_sq_);
+}
+
+Eigen::Array4d RotorAerodynamics::rotorResolvedRaw(const Eigen::Array4d& z) const noexcept {
+  Eigen::Array4d num;
+  Eigen::Array4d den;
+  rotorResolvedTerms(z, num, den);
+  return num / den;
+}
+
+RotorGroundFactors RotorAerodynamics::groundFactors(
+    const std::array<double, 4>& ground_distance_m) const noexcept {
+  // The four rotors run in the lanes of Eigen::Array4d (SIMD pairs): the square roots and
+  // divisions below are the cost of this function (docs/sim-aerodynamics.md, "Performance").
+  using A4 = Eigen::Array4d;
+  RotorGroundFactors out;
+  const double range = params_.ground_effect_range_m;
+  const double z_min = params_.min_ground_distance_m;
+  // Both laws are tapered by 1 − (z/range)⁴ so that they reach exactly zero at the range
+  // without a jump (at 1 m the taper changes them by about 1 %).
+  const auto taper = [this]<typename T>(T s) -> T {  // T: double or A4, evaluated
+    s *= inv_range_;
+    s *= s;
+    return 1.0 - s * s;
+  };
+  std::array<bool, 4> in_range{};
+  std::array<bool, 4> surface{};
+  A4 z;
+  A4 z_drag;
+  for (std::size_t i = 0; i < 4; ++i) {
+    const double d = ground_distance_m[i];
+    const auto k = static_cast<Eigen::Index>(i);
+    // Non-finite or distant: no surface within range. NaN compares false and lands here too.
+    in_range[i] = d < range;
+    z[k] = in_range[i] ? std::max(d, z_min) : range;
+    // The drag factor is not cut at the ground-effect range (q(2 m) ≈ 0.994), only for no
+    // surface at all (d = +∞ or NaN).
+    surface[i] = !(std::isnan(d) || d == std::numeric_limits<double>::infinity());
+    z_drag[k] = surface[i] ? std::max(d, z_min) : 0.0;
+  }
+  // The rotor-resolved law l = num/den, held at its peak below z* (rotorResolvedTerms, step 3),
+  // and the rotor-drag reduction q(z) = 1 − a/(1 + (z/z_q)²) (paper: Conclusion 3, measured
+  // ratio ≈ 0.6), near = 1/den_q, share one division: 1/(den·den_q).
+  A4 num;
+  A4 den;
+  rotorResolvedTerms(z.max(z_star_), num, den);
+  const A4 den_q = 1.0 + z_drag * z_drag * inv_drag_height_sq_;
+  const A4 inv = 1.0 / (den * den_q);
+  A4 near = den * inv;
+  for (std::size_t i = 0; i < 4; ++i) {
+    if (!surface[i]) near[static_cast<Eigen::Index>(i)] = 0.0;
+  }
+  Eigen::Map<A4>(out.drag_scale_x.data()) = 1.0 - params_.drag_ground_reduction_x * near;
+  Eigen::Map<A4>(out.drag_scale_y.data()) = 1.0 - params_.drag_ground_reduction_y * near;
+  A4 l = num * den_q * inv * taper(z);
+  for (std::size_t i = 0; i < 4; ++i) {
+    if (!in_range[i]) l[static_cast<Eigen::Index>(i)] = 0.0;
+  }
+  const double z_mean = 0.25 * z.sum();
+  const double l_mean = 0.25 * l.sum();
+  if (!(z_mean < range)) return out;  // no rotor near a surface: free air, φ = 0
+  const double c = collective(z_mean) * taper(z_mean);
+  const double inv_cap = 1.0 / (params_.redistribution_cap_per_m * z_mean);
+  // Suck-down: the flow under the vehicle escapes through the wide side of the gap, so the
+  // rotor-resolved differences are amplified (zero-sum: the total stays l̄) and bounded by
+  // M = m·z̄ (x/(1 + (x/M)⁴)^{1/4}): the measured saturation above ~10° of tilt.
+  const A4 dx = (1.0 + params_.suckdown_gain) * (l - l_mean);
+  const A4 r = dx * inv_cap;
+  const A4 r2 = r * r;
+  // Floor at zero: the redistribution never takes a rotor below its free-air thrust. Over a
+  // plane this never binds (φ ≥ 0.006 for h ≤ 1 m, δ ≤ 25°); it does for partial ground
+  // effect (a rotor over the void beside a table edge stays at free air).
+  Eigen::Map<A4>(out.phi.data()) = (c + l_mean + dx / (1.0 + r2 * r2).sqrt().sqrt()).max(0.0);
+  return out;
 }
 
 std::array<double, 4> RotorAerodynamics::additionalThrustFraction(
     const std::array<double, 4>& ground_distance_m) const noexcept {
-  const double range = params_.ground_effect_range_m;
-  // Both laws are tapered by 1 − (z/range)⁴ so that they reach exactly zero at the range
-  // without a jump (at 1 m the taper changes them by about 1 %).
-  const auto taper = [range](double z) {
-    const double s = z / range;
-    const double s2 = s * s;
-    return 1.0 - s2 * s2;
-  };
-  std::array<double, 4> l{};
-  double z_mean = 0.0;
-  double l_mean = 0.0;
-  for (std::size_t i = 0; i < 4; ++i) {
-    const double d = ground_distance_m[i];
-    // Non-finite or distant: no surface within range. NaN compares false and lands here too.
-    const bool in_range = d < range;
-    const double z = in_range ? std::max(d, params_.min_ground_distance_m) : range;
-    l[i] = in_range ? rotorResolved(z) * taper(z) : 0.0;
-    z_mean += 0.25 * z;
-    l_mean += 0.25 * l[i];
-  }
-  std::array<double, 4> phi{};
-  if (!(z_mean < range)) return phi;  // no rotor near a surface: free air
-  const double c = collective(z_mean) * taper(z_mean);
-  const double inv_cap = 1.0 / (params_.redistribution_cap_per_m * z_mean);
-  const double gain = 1.0 + params_.suckdown_gain;
-  for (std::size_t i = 0; i < 4; ++i) {
-    // Suck-down: the flow under the vehicle escapes through the wide side of the gap, so the
-    // rotor-resolved differences are amplified (zero-sum: the total stays l̄) and bounded by
-    // M = m·z̄ (x/(1 + (x/M)⁴)^{1/4}): the measured saturation above ~10° of tilt.
-    const double dx = gain * (l[i] - l_mean);
-    const double r = dx * inv_cap;
-    const double r2 = r * r;
-    // Floor at zero: the redistribution never takes a rotor below its free-air thrust. Over a
-    // plane this never binds (φ ≥ 0.006 for h ≤ 1 m, δ ≤ 25°); it does for partial ground
-    // effect (a rotor over the void beside a table edge stays at free air).
-    phi[i] = std::max(0.0, c + l_mean + dx / std::sqrt(std::sqrt(1.0 + r2 * r2)));
-  }
-  return phi;
+  return groundFactors(ground_distance_m).phi;
 }
 
 RotorAeroOutput RotorAerodynamics::compute(const std::array<double, 4>& n_rpm,
@@ -206,58 +254,77 @@ RotorAeroOutput RotorAerodynamics::compute(const std::array<double, 4>& n_rpm,
                                            const Eigen::Vector3d& v_air_W,
                                            const Eigen::Vector3d& w_B,
                                            const RotorSurroundings& surroundings) const noexcept {
-  RotorAeroOutput out;
-  // 1. Static additional-thrust fraction of each rotor from the distances.
-  const std::array<double, 4> phi = additionalThrustFraction(surroundings.ground_distance_m);
+  // 1. Static additional-thrust fraction and drag factors of each rotor from the distances.
+  return compute(n_rpm, R_WB, v_air_W, w_B, groundFactors(surroundings.ground_distance_m));
+}
+
+template <bool kPerRotor>
+Wrench RotorAerodynamics::evaluate(const std::array<double, 4>& n_rpm, const Eigen::Matrix3d& R_WB,
+                                   const Eigen::Vector3d& v_air_W, const Eigen::Vector3d& w_B,
+                                   const RotorGroundFactors& factors,
+                                   RotorAeroOutput* per_rotor) const noexcept {
+  // The steps of docs/sim-aerodynamics.md for the four rotors at once, one lane per rotor.
+  using A4 = Eigen::Array4d;
+  const Eigen::Map<const A4> n(n_rpm.data());
+  const Eigen::Map<const A4> phi(factors.phi.data());
   const Eigen::Vector3d v_B = R_WB.transpose() * v_air_W;
   // 2. Free-air thrust of each rotor and their mean (the cushion is fed by all the wakes).
-  std::array<double, 4> t_free{};
-  double t_mean = 0.0;
-  for (std::size_t i = 0; i < 4; ++i) {
-    t_free[i] = geometry_.k_T_N_per_rpm2[i] * n_rpm[i] * n_rpm[i];
-    t_mean += 0.25 * t_free[i];
-  }
+  const A4 t_free = k_T_ * n * n;
+  const double t_mean = 0.25 * t_free.sum();
+  // 3. Air velocity at each rotor hub, v_B + ω × r_i, in the rotor plane (rotor axis = z_B).
+  const A4 v_x = v_B.x() + (w_B.y() * r_z_ - w_B.z() * r_y_);
+  const A4 v_y = v_B.y() + (w_B.z() * r_x_ - w_B.x() * r_z_);
+  // 4. Forward-flight fade, Cheeseman & Bennett 1955: the image's effect scales with
+  //    1/(1 + (V/v_i)²), v_i ∝ n (momentum theory: v_i ∝ √T ∝ n). The smallest normal double
+  //    on both sides makes the fade 1 when v_i and V both vanish (a stopped rotor at rest) and
+  //    changes no other value (it is below the last bit of any v_i² the plant produces).
+  const A4 n_abs = n.abs();
+  const A4 v_i = vi_per_rpm_ * n_abs;
+  const A4 v_i_sq = v_i * v_i;
+  constexpr double kTiny = std::numeric_limits<double>::min();
+  const A4 fade = (v_i_sq + kTiny) / (v_i_sq + (v_x * v_x + v_y * v_y) + kTiny);
+  const A4 dphi = fade * phi;
+  // 5. Thrust: free-air plus the increment (β of it on the rotor's own n², the rest shared).
   const double beta = params_.own_thrust_fraction;
-  Eigen::Vector3d force = Eigen::Vector3d::Zero();
-  Eigen::Vector3d torque = Eigen::Vector3d::Zero();
-  for (std::size_t i = 0; i < 4; ++i) {
-    const Eigen::Vector3d& r = geometry_.position_B[i];
-    // 3. Air velocity at the rotor hub, in the rotor plane (rotor axis = z_B).
-    const Eigen::Vector3d v_rot = v_B + w_B.cross(r);
-    const double v_inplane_sq = v_rot.x() * v_rot.x() + v_rot.y() * v_rot.y();
-    // 4. Forward-flight fade, Cheeseman & Bennett 1955: the image's effect scales with
-    //    1/(1 + (V/v_i)²), v_i ∝ n (momentum theory: v_i ∝ √T ∝ n).
-    const double v_i = vi_per_rpm_ * std::abs(n_rpm[i]);
-    const double v_i_sq = v_i * v_i;
-    const double denom = v_i_sq + v_inplane_sq;
-    const double fade = denom > 0.0 ? v_i_sq / denom : 1.0;
-    const double dphi = fade * phi[i];
-    // 5. Thrust: free-air plus the increment (β of it on the rotor's own n², the rest shared).
-    const double thrust = t_free[i] + dphi * (beta * t_free[i] + (1.0 - beta) * t_mean);
-    out.thrust_N[i] = thrust;
-    out.gain[i] = t_free[i] > 0.0 ? thrust / t_free[i] : 1.0 + dphi;
-    // 6. Rotor drag per rotor, proportional to n and the in-plane velocity, reduced near the
-    //    surface by q(z) = 1 − a/(1 + (z/z_q)²) (paper: Conclusion 3, measured ratio ≈ 0.6).
-    const double d = surroundings.ground_distance_m[i];
-    // (No surface, d = ∞ or NaN: near = 0. Not cut at the ground-effect range: q(2 m) ≈ 0.994.)
-    const double z_d = std::max(d, params_.min_ground_distance_m);
-    const double near = std::isfinite(z_d) ? 1.0 / (1.0 + z_d * z_d * inv_drag_height_sq_) : 0.0;
-    const double n_abs = std::abs(n_rpm[i]);
-    const Eigen::Vector3d f(-params_.drag_x_N_per_mps_per_rpm *
-                                (1.0 - params_.drag_ground_reduction_x * near) * n_abs * v_rot.x(),
-                            -params_.drag_y_N_per_mps_per_rpm *
-                                (1.0 - params_.drag_ground_reduction_y * near) * n_abs * v_rot.y(),
-                            thrust);
-    force += f;
-    // 7. Torque about the CoM: r × F plus the aerodynamic reaction torque along the spin axis.
-    const double q = geometry_.k_I_Nm_per_rpm2[i] * n_rpm[i] * n_rpm[i] *
-                     (1.0 - params_.reaction_torque_reduction * dphi);
-    torque += r.cross(f);
-    torque.z() += geometry_.spin[i] * q;
+  const A4 thrust = t_free + dphi * (beta * t_free + (1.0 - beta) * t_mean);
+  if constexpr (kPerRotor) {
+    const A4 ratio = thrust / t_free;  // a stopped rotor's lane (0/0) is replaced below
+    for (std::size_t i = 0; i < 4; ++i) {
+      const auto k = static_cast<Eigen::Index>(i);
+      per_rotor->thrust_N[i] = thrust[k];
+      per_rotor->gain[i] = t_free[k] > 0.0 ? ratio[k] : 1.0 + dphi[k];
+    }
   }
-  out.wrench.force_B = force;
-  out.wrench.torque_B = torque;
+  // 6. Rotor drag per rotor, proportional to n and the in-plane velocity, reduced near the
+  //    surface by the factors q(z) (groundFactors).
+  const A4 f_x = -params_.drag_x_N_per_mps_per_rpm *
+                 Eigen::Map<const A4>(factors.drag_scale_x.data()) * n_abs * v_x;
+  const A4 f_y = -params_.drag_y_N_per_mps_per_rpm *
+                 Eigen::Map<const A4>(factors.drag_scale_y.data()) * n_abs * v_y;
+  // 7. Torque about the CoM: Σ r_i × F_i plus the aerodynamic reaction torques along z_B.
+  const A4 q = spin_k_I_ * n * n * (1.0 - params_.reaction_torque_reduction * dphi);
+  Wrench w;
+  w.force_B = Eigen::Vector3d(f_x.sum(), f_y.sum(), thrust.sum());
+  w.torque_B =
+      Eigen::Vector3d((r_y_ * thrust - r_z_ * f_y).sum(), (r_z_ * f_x - r_x_ * thrust).sum(),
+                      (r_x_ * f_y - r_y_ * f_x).sum() + q.sum());
+  return w;
+}
+
+RotorAeroOutput RotorAerodynamics::compute(const std::array<double, 4>& n_rpm,
+                                           const Eigen::Matrix3d& R_WB,
+                                           const Eigen::Vector3d& v_air_W,
+                                           const Eigen::Vector3d& w_B,
+                                           const RotorGroundFactors& factors) const noexcept {
+  RotorAeroOutput out;
+  out.wrench = evaluate<true>(n_rpm, R_WB, v_air_W, w_B, factors, &out);
   return out;
+}
+
+Wrench RotorAerodynamics::wrench(const std::array<double, 4>& n_rpm, const Eigen::Matrix3d& R_WB,
+                                 const Eigen::Vector3d& v_air_W, const Eigen::Vector3d& w_B,
+                                 const RotorGroundFactors& factors) const noexcept {
+  return evaluate<false>(n_rpm, R_WB, v_air_W, w_B, factors, nullptr);
 }
 
 }  // namespace geaware::sim

@@ -43,6 +43,45 @@ const ZigguratTables& zigguratTables() {
 
 }  // namespace
 
+Mt19937_64::Mt19937_64(std::uint64_t seed) noexcept {
+  // [rand.eng.mers]: x_i = f·(x_{i−1} xor (x_{i−1} >> (w − 2))) + i, f = 6364136223846793005.
+  state_[0] = seed;
+  for (std::size_t i = 1; i < kStateSize; ++i) {
+    const std::uint64_t prev = state_[i - 1];
+    state_[i] = 6364136223846793005ULL * (prev ^ (prev >> 62)) + i;
+  }
+  index_ = kStateSize;
+}
+
+void Mt19937_64::refill() noexcept {
+  // x_k = x_{k+m} xor (y >> 1) xor (a if y is odd), y = upper bit of x_k | lower 31 of x_{k+1}.
+  // The "if odd" is a mask, not a branch: on random bits a branch mispredicts half the time.
+  constexpr std::uint64_t kUpper = 0xFFFFFFFF80000000ULL;
+  constexpr std::uint64_t kLower = 0x7FFFFFFFULL;
+  constexpr std::uint64_t kMatrix = 0xB5026F5AA96619E9ULL;
+  const auto twist = [](std::uint64_t xk, std::uint64_t xk1, std::uint64_t xkm) {
+    const std::uint64_t y = (xk & kUpper) | (xk1 & kLower);
+    return xkm ^ (y >> 1) ^ ((std::uint64_t{0} - (y & 1u)) & kMatrix);
+  };
+  std::size_t k = 0;
+  for (; k < kStateSize - kShift; ++k)
+    state_[k] = twist(state_[k], state_[k + 1], state_[k + kShift]);
+  for (; k < kStateSize - 1; ++k)
+    state_[k] = twist(state_[k], state_[k + 1], state_[k + kShift - kStateSize]);
+  state_[kStateSize - 1] = twist(state_[kStateSize - 1], state_[0], state_[kShift - 1]);
+  // Tempering, [rand.eng.mers] with (u, d, s, b, t, c, l) = (29, 0x5555…, 17, 0x71D6…, 37,
+  // 0xFFF7…, 43).
+  for (std::size_t i = 0; i < kStateSize; ++i) {
+    std::uint64_t x = state_[i];
+    x ^= (x >> 29) & 0x5555555555555555ULL;
+    x ^= (x << 17) & 0x71D67FFFEDA60000ULL;
+    x ^= (x << 37) & 0xFFF7EEE000000000ULL;
+    x ^= x >> 43;
+    output_[i] = x;
+  }
+  index_ = 0;
+}
+
 std::uint64_t streamSeed(std::uint64_t scenario_seed, std::uint64_t stream_salt) noexcept {
   return splitmix64(splitmix64(scenario_seed) ^ stream_salt);
 }
@@ -106,10 +145,10 @@ const Eigen::Vector3d& GaussMarkov3::advance(double dt_s, NoiseSource& noise) no
 
 bool isFinite(const PlantState& s) noexcept {
   // A NaN or ±∞ anywhere makes the sum non-finite (physical magnitudes cannot overflow it).
-  double acc = s.t_s;
-  acc += s.p_W.sum() + s.v_W.sum() + s.q_WB.coeffs().sum() + s.w_B.sum() + s.a_W.sum() + s.w_dot_B.sum();
-  for (double n : s.n_rpm) acc += n;
-  return std::isfinite(acc);
+  // Summed as a tree, not a chain: every sensor calls this at every plant step.
+  const double a = (s.t_s + s.p_W.sum()) + (s.v_W.sum() + s.q_WB.coeffs().sum());
+  const double b = (s.w_B.sum() + s.a_W.sum()) + (s.w_dot_B.sum() + (s.n_rpm[0] + s.n_rpm[1]));
+  return std::isfinite(a + (b + (s.n_rpm[2] + s.n_rpm[3])));
 }
 
 }  // namespace geaware::sim

@@ -272,52 +272,140 @@ HeightMap::HeightMap(double origin_x_m, double origin_y_m, double cell_m,
     }
   }
   max_z_m_ = *std::max_element(z_.begin(), z_.end());
-  // The gradient of a bilinear patch is a convex combination of its edges' slopes, so the
-  // steepest edges bound the slope everywhere (and outside, where the height is held, it is 0).
-  for (std::size_t j = 0; j < ny_; ++j) {
-    for (std::size_t i = 0; i < nx_; ++i) {
-      if (i + 1 < nx_)
-        max_slope_x_ = std::max(max_slope_x_, std::abs(node(i + 1, j) - node(i, j)) / cell_m_);
-      if (j + 1 < ny_)
-        max_slope_y_ = std::max(max_slope_y_, std::abs(node(i, j + 1) - node(i, j)) / cell_m_);
-    }
-  }
+  inv_cell_ = 1.0 / cell_m_;
 }
 
 std::optional<double> HeightMap::rayCast(const Eigen::Vector3d& origin_W,
                                          const Eigen::Vector3d& dir_W,
                                          double max_range_m) const noexcept {
   if (!validRay(origin_W, dir_W, max_range_m)) return std::nullopt;
-  const Eigen::Vector3d d = dir_W.normalized();
-  const auto gap = [&](double t) {
-    const Eigen::Vector3d p = origin_W + t * d;
-    return p.z() - heightAt(p.x(), p.y());
-  };
-  // Along the ray the gap f(t) = z(t) − H(x(t), y(t)) falls at most at the rate
-  // −d_z + Lx·|d_x| + Ly·|d_y| (L the slope bounds): a step of f/rate cannot cross the surface.
-  const double rate = -d.z() + max_slope_x_ * std::abs(d.x()) + max_slope_y_ * std::abs(d.y());
+  const auto hit = walk<false>(origin_W, dir_W * (1.0 / dir_W.norm()), max_range_m);
+  if (!hit) return std::nullopt;
+  return hit->distance_m;
+}
+
+std::optional<HeightMapHit> HeightMap::rayHitUnit(const Eigen::Vector3d& origin_W,
+                                                  const Eigen::Vector3d& unit_dir_W,
+                                                  double max_range_m) const noexcept {
+  return walk<true>(origin_W, unit_dir_W, max_range_m);
+}
+
+template <bool kGradient>
+std::optional<HeightMapHit> HeightMap::walk(const Eigen::Vector3d& origin_W,
+                                            const Eigen::Vector3d& d,
+                                            double max_range_m) const noexcept {
+  // Exact: walk the cells the ray's ground track crosses (Amanatides & Woo 1987, "A fast voxel
+  // traversal algorithm for ray tracing") and intersect the ray with each cell's bilinear patch.
+  // Along the ray the patch is a quadratic in t, so each cell is one closed-form root; the
+  // first root is the hit (no step size, nothing narrow can be jumped over).
+  // Above the highest node nothing can be hit: start where the ray comes down to it.
   double t = 0.0;
-  double f = gap(0.0);
-  if (f <= 0.0) return 0.0;
-  if (!(rate > 0.0)) return std::nullopt;  // the ray climbs faster than any slope of the map
-  // Near the surface the safe steps shrink geometrically; below kMinStep the march takes
-  // fixed steps and refines the one that crosses, to 1e-9 m like the generic march.
-  constexpr double kMinStep = 1e-4;  // [m]
-  for (int k = 0; k < 100000; ++k) {
-    const double t_next = t + std::max(f / rate, kMinStep);
-    if (t_next > max_range_m) {
-      // The last stretch: a hit there is within one safe step, check the end of the range.
-      const double f_end = gap(max_range_m);
-      if (f_end > 0.0) return std::nullopt;
-      return refineRoot(gap, t, f, max_range_m, f_end);
-    }
-    const double f_next = gap(t_next);
-    if (f_next <= 0.0)
-      return refineRoot(gap, t, f, t_next, f_next);  // only a minimum step can overshoot
-    t = t_next;
-    f = f_next;
+  if (origin_W.z() > max_z_m_) {
+    if (!(d.z() < 0.0)) return std::nullopt;
+    t = (origin_W.z() - max_z_m_) / -d.z();
+    if (t > max_range_m) return std::nullopt;
+  } else if (origin_W.z() - heightAt(origin_W.x(), origin_W.y()) <= 0.0) {
+    // The origin is on or under the surface.
+    HeightMapHit hit;
+    if constexpr (kGradient) hit.gradient = gradientAt(origin_W.x(), origin_W.y());
+    return hit;
   }
-  return Terrain::rayCast(origin_W, dir_W, max_range_m);  // pathological: fall back to the march
+  // Grid coordinates u = (x − x0)/cell, v = (y − y0)/cell along the ray: u(t) = u0 + du·t.
+  // Cells are indexed −1 … n−1 per axis: −1 and n−1 are the half-planes outside the grid,
+  // where the height is held at the border (the patch is constant along that axis there).
+  const double u0 = (origin_W.x() - origin_x_m_) * inv_cell_;
+  const double v0 = (origin_W.y() - origin_y_m_) * inv_cell_;
+  const double du = d.x() * inv_cell_;
+  const double dv = d.y() * inv_cell_;
+  const double inv_du = du != 0.0 ? 1.0 / du : 0.0;
+  const double inv_dv = dv != 0.0 ? 1.0 / dv : 0.0;
+  const auto last_x = static_cast<std::ptrdiff_t>(nx_) - 1;
+  const auto last_y = static_cast<std::ptrdiff_t>(ny_) - 1;
+  const auto cellOf = [](double w, std::ptrdiff_t last) -> std::ptrdiff_t {
+    if (!(w >= 0.0)) return -1;
+    return w >= static_cast<double>(last) ? last : static_cast<std::ptrdiff_t>(w);
+  };
+  std::ptrdiff_t I = cellOf(u0 + du * t, last_x);
+  std::ptrdiff_t J = cellOf(v0 + dv * t, last_y);
+  constexpr double kNever = std::numeric_limits<double>::infinity();
+  // The ray parameter at which the track leaves cell I along one axis (∞: never).
+  const auto exitOf = [](std::ptrdiff_t c, std::ptrdiff_t last, double w0, double dw,
+                         double inv_dw) {
+    if (dw > 0.0) return c < last ? (static_cast<double>(c + 1) - w0) * inv_dw : kNever;
+    if (dw < 0.0) return c >= 0 ? (static_cast<double>(c) - w0) * inv_dw : kNever;
+    return kNever;
+  };
+  double t_exit_u = exitOf(I, last_x, u0, du, inv_du);
+  double t_exit_v = exitOf(J, last_y, v0, dv, inv_dv);
+  for (;;) {
+    const double t_exit = std::min({t_exit_u, t_exit_v, max_range_m});
+    // 1. The patch of cell (I, J) as H = a + b·fx + c·fy + e·fx·fy, fx and fy linear in the
+    //    local parameter τ = t − t_entry (rate 0 outside the grid, where they are held).
+    const auto i = static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(I, 0, last_x - 1));
+    const auto j = static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(J, 0, last_y - 1));
+    const bool inner_x = I >= 0 && I < last_x;
+    const bool inner_y = J >= 0 && J < last_y;
+    const double fx = inner_x ? u0 + du * t - static_cast<double>(I) : (I < 0 ? 0.0 : 1.0);
+    const double fy = inner_y ? v0 + dv * t - static_cast<double>(J) : (J < 0 ? 0.0 : 1.0);
+    const double qx = inner_x ? du : 0.0;
+    const double qy = inner_y ? dv : 0.0;
+    const double z00 = node(i, j);
+    const double b = node(i + 1, j) - z00;
+    const double c = node(i, j + 1) - z00;
+    const double e = node(i + 1, j + 1) - node(i, j + 1) - b;
+    // The hit at τ in this cell, with ∇H there (zero across a held border, as gradientAt()).
+    const auto hitAt = [&](double tau) {
+      HeightMapHit hit;
+      hit.distance_m = t + tau;
+      if constexpr (kGradient) {
+        hit.gradient.x() = inner_x ? (b + e * (fy + qy * tau)) * inv_cell_ : 0.0;
+        hit.gradient.y() = inner_y ? (c + e * (fx + qx * tau)) * inv_cell_ : 0.0;
+      }
+      return hit;
+    };
+    // 2. The gap g(τ) = z(τ) − H(τ) = A·τ² + B·τ + C.
+    const double C = origin_W.z() + d.z() * t - (z00 + b * fx + c * fy + e * fx * fy);
+    if (C <= 0.0) return hitAt(0.0);  // reached at the entry (a root at the previous cell's end)
+    const double B = d.z() - (b * qx + c * qy + e * (fx * qy + qx * fy));
+    const double A = -e * qx * qy;
+    // 3. The first root in [0, τ_exit]: g(0) = C > 0, so it is the smallest positive root.
+    //    Most cells have none, which shows without a division: g stays positive on the cell
+    //    when g(τ_exit) > 0 and g has no minimum ≤ 0 inside (concave, or rising from τ = 0,
+    //    or its vertex −B/2A beyond τ_exit, or B² < 4AC).
+    const double tau_exit = t_exit - t;
+    const double disc = B * B - 4.0 * A * C;
+    const double g_exit = (A * tau_exit + B) * tau_exit + C;
+    const bool crosses =
+        g_exit <= 0.0 || (A > 0.0 && B < 0.0 && -B < 2.0 * A * tau_exit && disc >= 0.0);
+    if (crosses) {
+      double tau = kNever;
+      if (A == 0.0) {
+        if (B < 0.0) tau = C / -B;
+      } else if (disc >= 0.0) {
+        // The roots without cancellation: q = −(B + sign(B)·√disc)/2, roots q/A and C/q. With
+        // C > 0 the first non-negative one is C/q when B < 0 (the smaller of two positive
+        // roots for A > 0, the only positive one for A < 0) and q/A otherwise (then A < 0).
+        const double q = -0.5 * (B + std::copysign(std::sqrt(disc), B));
+        const double root = B < 0.0 ? C / q : q / A;
+        if (root >= 0.0) tau = root;
+      }
+      if (tau <= tau_exit) return hitAt(tau);
+      // Round-off put the root just past the cell's end (or the discriminant just below 0).
+      if (g_exit <= 0.0) return hitAt(tau_exit);
+    }
+    // 4. On to the next cell, or out of range. A ray climbing above the highest node never
+    //    comes back down.
+    if (t_exit >= max_range_m) return std::nullopt;
+    t = t_exit;
+    if (d.z() >= 0.0 && origin_W.z() + d.z() * t > max_z_m_) return std::nullopt;
+    if (t_exit_u <= t_exit_v) {
+      I += du > 0.0 ? 1 : -1;
+      t_exit_u = exitOf(I, last_x, u0, du, inv_du);
+    } else {
+      J += dv > 0.0 ? 1 : -1;
+      t_exit_v = exitOf(J, last_y, v0, dv, inv_dv);
+    }
+  }
 }
 
 HeightMap HeightMap::fromFile(const std::string& path) {
@@ -419,8 +507,8 @@ void HeightMap::locate(double x_m, double y_m, std::size_t& i, std::size_t& j, d
   // Clamp to the grid (held at the border outside); a NaN coordinate lands on node 0.
   const double max_u = static_cast<double>(nx_ - 1);
   const double max_v = static_cast<double>(ny_ - 1);
-  double u = (x_m - origin_x_m_) / cell_m_;
-  double v = (y_m - origin_y_m_) / cell_m_;
+  double u = (x_m - origin_x_m_) * inv_cell_;
+  double v = (y_m - origin_y_m_) * inv_cell_;
   u = u > 0.0 ? std::min(u, max_u) : 0.0;
   v = v > 0.0 ? std::min(v, max_v) : 0.0;
   i = std::min(static_cast<std::size_t>(u), nx_ - 2);
@@ -440,26 +528,32 @@ double HeightMap::heightAt(double x_m, double y_m) const noexcept {
   return z0 + fy * (z1 - z0);
 }
 
-Eigen::Vector3d HeightMap::normalAt(double x_m, double y_m) const noexcept {
+Eigen::Vector2d HeightMap::gradientAt(double x_m, double y_m) const noexcept {
   std::size_t i = 0;
   std::size_t j = 0;
   double fx = 0.0;
   double fy = 0.0;
   locate(x_m, y_m, i, j, fx, fy);
   // Gradient of the bilinear patch; zero across the border, where the height is held.
-  const double u = (x_m - origin_x_m_) / cell_m_;
-  const double v = (y_m - origin_y_m_) / cell_m_;
+  const double u = (x_m - origin_x_m_) * inv_cell_;
+  const double v = (y_m - origin_y_m_) * inv_cell_;
   const bool inside_x = u >= 0.0 && u <= static_cast<double>(nx_ - 1);
   const bool inside_y = v >= 0.0 && v <= static_cast<double>(ny_ - 1);
   const double dzdx = inside_x ? ((node(i + 1, j) - node(i, j)) * (1.0 - fy) +
-                                  (node(i + 1, j + 1) - node(i, j + 1)) * fy) /
-                                     cell_m_
+                                  (node(i + 1, j + 1) - node(i, j + 1)) * fy) *
+                                     inv_cell_
                                : 0.0;
   const double dzdy = inside_y ? ((node(i, j + 1) - node(i, j)) * (1.0 - fx) +
-                                  (node(i + 1, j + 1) - node(i + 1, j)) * fx) /
-                                     cell_m_
+                                  (node(i + 1, j + 1) - node(i + 1, j)) * fx) *
+                                     inv_cell_
                                : 0.0;
-  return Eigen::Vector3d(-dzdx, -dzdy, 1.0).normalized();
+  return {dzdx, dzdy};
+}
+
+Eigen::Vector3d HeightMap::normalAt(double x_m, double y_m) const noexcept {
+  // (−∂H/∂x, −∂H/∂y, 1)/|…|: one square root and one division.
+  const Eigen::Vector2d g = gradientAt(x_m, y_m);
+  return Eigen::Vector3d(-g.x(), -g.y(), 1.0) * (1.0 / std::sqrt(g.squaredNorm() + 1.0));
 }
 
 }  // namespace geaware::sim

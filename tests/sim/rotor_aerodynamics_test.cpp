@@ -241,6 +241,43 @@ TEST_F(AeroTest, ReactionTorqueFollowsTheSpinSigns) {
   EXPECT_NEAR(o.wrench.torque_B.z(), k_I * (2 * 12000.0 * 12000.0 - 2 * 10000.0 * 10000.0), 1e-12);
 }
 
+TEST_F(AeroTest, HeldGroundFactorsGiveTheSameWrenchAsTheDistances) {
+  // The plant evaluates the distance-dependent factors once per step and calls compute() or
+  // wrench() with them at every RK4 stage: the same numbers as compute() from the distances.
+  RotorSurroundings s = flatAt(0.14);
+  s.ground_distance_m[0] = 0.09;
+  s.ground_distance_m[3] = kNoGround;                            // one rotor over the void
+  const std::array<double, 4> n{9500.0, 10200.0, 0.0, 11000.0};  // one rotor stopped
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(0.2, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Eigen::Vector3d v_W(1.5, -0.7, 0.3);
+  const Eigen::Vector3d w_B(0.4, -1.1, 0.6);
+  const RotorGroundFactors f = aero_.groundFactors(s.ground_distance_m);
+  const RotorAeroOutput direct = aero_.compute(n, R, v_W, w_B, s);
+  const RotorAeroOutput held = aero_.compute(n, R, v_W, w_B, f);
+  const Wrench wrench_only = aero_.wrench(n, R, v_W, w_B, f);
+  EXPECT_EQ(direct.wrench.force_B, held.wrench.force_B);
+  EXPECT_EQ(direct.wrench.torque_B, held.wrench.torque_B);
+  EXPECT_EQ(direct.wrench.force_B, wrench_only.force_B);
+  EXPECT_EQ(direct.wrench.torque_B, wrench_only.torque_B);
+  EXPECT_EQ(direct.thrust_N, held.thrust_N);
+  EXPECT_EQ(direct.gain, held.gain);
+  EXPECT_EQ(f.phi, aero_.additionalThrustFraction(s.ground_distance_m));
+  // A stopped rotor (v_i = 0) in moving air is fully faded; at rest its gain is 1 + φ.
+  EXPECT_DOUBLE_EQ(direct.gain[2], 1.0);
+  const RotorAeroOutput rest = aero_.compute(n, Eigen::Matrix3d::Identity(),
+                                             Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), f);
+  EXPECT_DOUBLE_EQ(rest.gain[2], 1.0 + f.phi[2]);
+  EXPECT_EQ(f.phi[3], 0.0);
+  EXPECT_EQ(f.drag_scale_x[3], 1.0);
+  EXPECT_EQ(f.drag_scale_y[3], 1.0);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_GT(f.phi[i], 0.0);
+    EXPECT_LT(f.drag_scale_x[i], 1.0);
+    EXPECT_LT(f.drag_scale_y[i], 1.0);
+  }
+}
+
 TEST_F(AeroTest, InvalidParametersAreRejectedWithTheFieldName) {
   RotorAeroParams p;
   p.suckdown_gain = std::numeric_limits<double>::quiet_NaN();

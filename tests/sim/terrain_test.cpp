@@ -162,6 +162,18 @@ TEST(HeightMap, BilinearHeightsAndNormals) {
   EXPECT_NEAR(m.normalAt(5.0, 0.0).x(), 0.0, 1e-15);
 }
 
+TEST(HeightMap, GradientIsTheSlopeUnderTheNormal) {
+  // gradientAt() = (∂H/∂x, ∂H/∂y); normalAt() is (−∂H/∂x, −∂H/∂y, 1) normalised; both are zero
+  // across the border, where the height is held.
+  const HeightMap m = bilinearMap(0.1, 0.2, -0.3, 0.15);
+  const Eigen::Vector2d g = m.gradientAt(0.33, 0.7);
+  EXPECT_MATRIX_NEAR(g, Eigen::Vector2d(0.2 + 0.15 * 0.7, -0.3 + 0.15 * 0.33), 1e-13);
+  EXPECT_MATRIX_NEAR(m.normalAt(0.33, 0.7), Eigen::Vector3d(-g.x(), -g.y(), 1.0).normalized(),
+                     1e-15);
+  EXPECT_EQ(m.gradientAt(5.0, 0.0).x(), 0.0);
+  EXPECT_EQ(m.gradientAt(0.0, -3.0).y(), 0.0);
+}
+
 TEST(HeightMap, GenericRayCastMatchesAPlane) {
   // A planar map over [−5, 5]² and the same TiltedPlane: the height map's march-and-bisect
   // agrees with the closed form (rays of ≤ 3 m from |x|, |y| ≤ 2 stay over the map).
@@ -203,6 +215,102 @@ TEST(HeightMap, SlopeBoundedRayCastMatchesTheGenericMarch) {
     }
   });
   EXPECT_GT(hits, 100);
+}
+
+/// The bumpy map of the tests below: ±5 cm waves plus a ±2 cm ripple on 10 cm cells.
+HeightMap bumpyMap() {
+  std::vector<std::vector<double>> rows(61, std::vector<double>(61));
+  for (std::size_t j = 0; j < 61; ++j) {
+    for (std::size_t i = 0; i < 61; ++i) {
+      rows[j][i] = 0.05 * std::sin(1.3 * static_cast<double>(i) * 0.1) *
+                       std::cos(0.9 * static_cast<double>(j) * 0.1) +
+                   0.02 * std::sin(7.0 * static_cast<double>(i + j) * 0.1);
+    }
+  }
+  return HeightMap(-3.0, -3.0, 0.1, rows);
+}
+
+/// The ray's first hit is exact when the hit point lies on the surface and the ray is above
+/// the surface everywhere before it (sampled every 0.5 mm: a check, not a proof).
+void expectFirstHit(const HeightMap& m, const Eigen::Vector3d& o, const Eigen::Vector3d& d,
+                    double t) {
+  const auto gap = [&](double s) {
+    const Eigen::Vector3d p = o + s * d;
+    return p.z() - m.heightAt(p.x(), p.y());
+  };
+  EXPECT_NEAR(gap(t), 0.0, 1e-12) << o.transpose() << " / " << d.transpose();
+  for (double s = 0.0; s < t - 1e-6; s += 5e-4)
+    ASSERT_GT(gap(s), 0.0) << "s = " << s << " of " << t << ": " << o.transpose();
+}
+
+TEST(HeightMap, CellWalkRayCastIsExactOnEveryKindOfRay) {
+  // The height map's own ray cast walks the cells under the ray and solves each bilinear patch
+  // exactly (a quadratic along the ray): the hit is on the surface to round-off, nothing is
+  // hit before it, and it agrees with the generic march (which bisects to 1e-9 m).
+  const HeightMap m = bumpyMap();
+  const auto check = [&](const Eigen::Vector3d& o, const Eigen::Vector3d& dir,
+                         double range) -> bool {
+    const Eigen::Vector3d d = dir.normalized();
+    const auto fast = m.rayCast(o, dir, range);
+    const auto march = marched(m, o, d, range);
+    EXPECT_EQ(fast.has_value(), march.has_value()) << o.transpose() << " / " << d.transpose();
+    if (!fast || !march) return false;
+    EXPECT_NEAR(*fast, *march, kMarchTol) << o.transpose() << " / " << d.transpose();
+    expectFirstHit(m, o, d, *fast);
+    return true;
+  };
+  // Vertical, axis-parallel, diagonal and grazing rays; from above, from the side below the
+  // highest node (hitting the flank of a bump), from outside the grid inwards (the border is
+  // held there), along a grid line, and one climbing away.
+  EXPECT_TRUE(check({0.31, -0.42, 0.5}, {0, 0, -1}, 4.0));
+  EXPECT_TRUE(check({0.0, 0.0, 0.5}, {1, 0, -0.3}, 4.0));
+  EXPECT_TRUE(check({0.0, 0.0, 0.5}, {0, -1, -0.3}, 4.0));
+  EXPECT_TRUE(check({-1.0, -1.0, 0.3}, {1, 1, -0.2}, 4.0));
+  EXPECT_TRUE(check({-2.0, 0.3, 0.06}, {1, 0.05, -0.01}, 4.0));
+  EXPECT_TRUE(check({-5.0, 0.2, 0.4}, {1, 0.1, -0.2}, 4.0));
+  EXPECT_TRUE(check({0.5, 5.0, 0.4}, {0.0, -1, -0.15}, 4.0));
+  EXPECT_TRUE(check({-0.5, 0.7, 0.5}, {1, 0, -0.4}, 4.0));   // x and y on grid lines
+  EXPECT_TRUE(check({4.0, 4.0, 0.3}, {-1, -1, -0.1}, 4.0));  // from the held corner
+  EXPECT_FALSE(check({0.0, 0.0, 0.5}, {0.3, 0.2, 1.0}, 4.0));
+  EXPECT_FALSE(check({0.0, 0.0, 0.5}, {0, 0, -1}, 0.3));  // out of range
+  // Grazing rays just above the crests, in every direction.
+  int hits = 0;
+  for (int k = 0; k < 72; ++k) {
+    const double a = 2.0 * std::numbers::pi * k / 72.0;
+    hits += check({0.1, -0.2, 0.09}, {std::cos(a), std::sin(a), -0.02}, 4.0) ? 1 : 0;
+  }
+  EXPECT_GT(hits, 20);  // 35 of 72 reach the surface within 4 m
+  // Under the surface: a hit at 0.
+  EXPECT_DOUBLE_EQ(*m.rayCast({0.0, 0.0, m.heightAt(0.0, 0.0) - 1e-3}, {0, 0, -1}, 4.0), 0.0);
+}
+
+TEST(HeightMap, CellWalkRayCastMatchesTheMarchFromAnywhere) {
+  // Random rays from inside and outside the grid (it spans ±3 m), heights from just above the
+  // crests to 3 m, many nearly horizontal.
+  const HeightMap m = bumpyMap();
+  std::mt19937_64 rng(17);
+  const auto u = [&rng](double lo, double hi) {
+    return lo + (hi - lo) * static_cast<double>(rng() >> 11) * 0x1.0p-53;
+  };
+  int hits = 0;
+  for (int k = 0; k < 400; ++k) {
+    const Eigen::Vector3d o(u(-4.0, 4.0), u(-4.0, 4.0), u(0.08, 3.0));
+    const Eigen::Vector3d d = Eigen::Vector3d(u(-1, 1), u(-1, 1), u(-1.0, 0.05)).normalized();
+    const auto fast = m.rayCast(o, d, 4.0);
+    const auto march = marched(m, o, d, 4.0);
+    ASSERT_EQ(fast.has_value(), march.has_value()) << o.transpose() << " / " << d.transpose();
+    if (!fast) continue;
+    ++hits;
+    ASSERT_NEAR(*fast, *march, kMarchTol) << o.transpose() << " / " << d.transpose();
+    expectFirstHit(m, o, d, *fast);
+    // The ranger's entry point: the same hit, and the gradient of the patch under it.
+    const auto hit = m.rayHitUnit(o, d, 4.0);
+    ASSERT_TRUE(hit.has_value());
+    EXPECT_NEAR(hit->distance_m, *fast, 1e-12);
+    const Eigen::Vector3d p = o + hit->distance_m * d;
+    EXPECT_MATRIX_NEAR(hit->gradient, m.gradientAt(p.x(), p.y()), 1e-9);
+  }
+  EXPECT_GT(hits, 150);
 }
 
 class HeightMapFile : public ::testing::Test {

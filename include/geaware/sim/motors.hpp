@@ -13,21 +13,42 @@
 // pushes the body about −z). ṅ in rpm/s is converted to rad/s² (model::kRpmToRadPerSec).
 
 #include <array>
+#include <cmath>
+#include <cstddef>
 
 #include <Eigen/Core>
 
+#include "geaware/model/units.hpp"
 #include "geaware/sim/truth_params.hpp"
 #include "geaware/sim/wrench.hpp"
 
 namespace geaware::sim {
 
 /// Motor torques on the body, body frame [N·m] (force zero): the reaction to the rotors'
-/// angular acceleration and the gyroscopic torque of their spin, each switchable.
-[[nodiscard]] Wrench motorTorques(double J_R_kgm2, const std::array<double, 4>& yaw_sign,
-                                  const std::array<double, 4>& n_rpm,
-                                  const std::array<double, 4>& n_dot_rpm_per_s,
-                                  const Eigen::Vector3d& w_B, bool reaction,
-                                  bool gyroscopic) noexcept;
+/// angular acceleration and the gyroscopic torque of their spin, each switchable. Inline: the
+/// plant calls it at every RK4 stage.
+[[nodiscard]] inline Wrench motorTorques(double J_R_kgm2, const std::array<double, 4>& yaw_sign,
+                                         const std::array<double, 4>& n_rpm,
+                                         const std::array<double, 4>& n_dot_rpm_per_s,
+                                         const Eigen::Vector3d& w_B, bool reaction,
+                                         bool gyroscopic) noexcept {
+  Wrench w;
+  if (reaction) {
+    double tz = 0.0;
+    for (std::size_t i = 0; i < 4; ++i) tz += yaw_sign[i] * n_dot_rpm_per_s[i];
+    w.torque_B.z() = J_R_kgm2 * model::kRpmToRadPerSec * tz;
+  }
+  if (gyroscopic) {
+    // Total rotor angular momentum along z_B, h = Σ J_R·Ω_i·d_i with d_i = −yaw_i; the torque
+    // on the body is −ω × h·z_B = h·(−ω_y, ω_x, 0).
+    double h = 0.0;
+    for (std::size_t i = 0; i < 4; ++i) h -= yaw_sign[i] * n_rpm[i];
+    h *= J_R_kgm2 * model::kRpmToRadPerSec;
+    w.torque_B.x() += -h * w_B.y();
+    w.torque_B.y() += h * w_B.x();
+  }
+  return w;
+}
 
 class Motors {
  public:
@@ -40,8 +61,18 @@ class Motors {
   void beginStep(const std::array<double, 4>& throttle, double dt_s) noexcept;
 
   /// Rotor speeds and their rates at time s ∈ [0, dt] into the step begun last [rpm, rpm/s].
+  /// Inline: the plant calls it at every RK4 stage.
   void speedsAt(double s, std::array<double, 4>& n_rpm,
-                std::array<double, 4>& n_dot_rpm_per_s) const noexcept;
+                std::array<double, 4>& n_dot_rpm_per_s) const noexcept {
+    const double decay = s == 0.0           ? 1.0
+                         : s == 0.5 * dt_s_ ? decay_half_
+                         : s == dt_s_       ? decay_full_
+                                            : std::exp(-s * inv_time_constant_);
+    for (std::size_t i = 0; i < 4; ++i) {
+      n_rpm[i] = n_ss_rpm_[i] + (n_rpm_[i] - n_ss_rpm_[i]) * decay;
+      n_dot_rpm_per_s[i] = (n_ss_rpm_[i] - n_rpm[i]) * inv_time_constant_;
+    }
+  }
 
   /// Finish the step begun last: speeds become n(dt), the battery discharges. No allocation.
   void endStep() noexcept;
@@ -85,6 +116,9 @@ class Motors {
   double voltage_V_;
   double current_A_ = 0.0;
   double charge_used_Ah_;
+  double inv_time_constant_;    // 1/τ [1/s]
+  double inv_capacity_;         // 1/capacity [1/Ah]
+  double inv_nominal_voltage_;  // 1/V_nom [1/V]
 };
 
 }  // namespace geaware::sim

@@ -68,6 +68,10 @@ class LatticeRanger {
   [[nodiscard]] long rejected() const noexcept { return rejected_; }
 
  private:
+  /// measure() into a frame that starts as a copy of blank_ (no 2.3 kB copy on the way out).
+  void measureInto(model::RangerFrame& frame, const PlantState& state,
+                   const Terrain* terrain) noexcept;
+
   RangerParams params_;
   NoiseSource noise_;
   SampleClock clock_;

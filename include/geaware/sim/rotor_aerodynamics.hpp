@@ -109,6 +109,16 @@ struct RotorGeometry {
   double radius_m = 0.0;
 };
 
+/// The distance-dependent factors of the four rotors at one instant: everything compute() takes
+/// from the surroundings. They change only with the rotor heights (about a millimetre per step at
+/// 1 kHz), so the plant evaluates them once per step and holds them over the RK4 stages
+/// (docs/sim-aerodynamics.md, "Performance"); compute(…, surroundings) evaluates them every call.
+struct RotorGroundFactors {
+  std::array<double, 4> phi{};           ///< static additional-thrust fraction φ_i [-]
+  std::array<double, 4> drag_scale_x{};  ///< near-ground drag factor q_x(z_i) ∈ (0, 1] [-]
+  std::array<double, 4> drag_scale_y{};  ///< near-ground drag factor q_y(z_i) ∈ (0, 1] [-]
+};
+
 /// Per-rotor outputs, for logging and the rigs.
 struct RotorAeroOutput {
   Wrench wrench;                     ///< sum over rotors, body frame, about the CoM
@@ -130,9 +140,25 @@ class RotorAerodynamics {
                                         const Eigen::Vector3d& w_B,
                                         const RotorSurroundings& surroundings) const noexcept;
 
+  /// The same from factors evaluated earlier by groundFactors() (the plant holds them over a
+  /// step). compute(…, s) is compute(…, groundFactors(s.ground_distance_m)). No allocation.
+  [[nodiscard]] RotorAeroOutput compute(const std::array<double, 4>& n_rpm,
+                                        const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& v_air_W,
+                                        const Eigen::Vector3d& w_B,
+                                        const RotorGroundFactors& factors) const noexcept;
+
+  /// compute(…, factors).wrench without the per-rotor outputs (the plant's RK4 stages).
+  [[nodiscard]] Wrench wrench(const std::array<double, 4>& n_rpm, const Eigen::Matrix3d& R_WB,
+                              const Eigen::Vector3d& v_air_W, const Eigen::Vector3d& w_B,
+                              const RotorGroundFactors& factors) const noexcept;
+
   /// Static additional-thrust fraction φ_i of each rotor (no forward-speed fade) for the given
   /// distances [-]: the rigs and the calibration read it; compute() uses the same function.
   [[nodiscard]] std::array<double, 4> additionalThrustFraction(
+      const std::array<double, 4>& ground_distance_m) const noexcept;
+
+  /// φ_i and the near-ground drag factors q_x, q_y of each rotor for the given distances.
+  [[nodiscard]] RotorGroundFactors groundFactors(
       const std::array<double, 4>& ground_distance_m) const noexcept;
 
   [[nodiscard]] const RotorGeometry& geometry() const noexcept { return geometry_; }
@@ -141,14 +167,31 @@ class RotorAerodynamics {
   [[nodiscard]] const RotorAeroParams& params() const noexcept { return params_; }
 
  private:
+  /// compute() and wrench(): the per-rotor outputs go to *per_rotor when kPerRotor.
+  template <bool kPerRotor>
+  [[nodiscard]] Wrench evaluate(const std::array<double, 4>& n_rpm, const Eigen::Matrix3d& R_WB,
+                                const Eigen::Vector3d& v_air_W, const Eigen::Vector3d& w_B,
+                                const RotorGroundFactors& factors,
+                                RotorAeroOutput* per_rotor) const noexcept;
   [[nodiscard]] double collective(double z_mean) const noexcept;
-  [[nodiscard]] double rotorResolvedRaw(double z) const noexcept;
-  [[nodiscard]] double rotorResolved(double z) const noexcept {
-    return rotorResolvedRaw(z < z_star_ ? z_star_ : z);
+  /// The rotor-resolved law l(z) = num/den of four distances at once (one SIMD lane per rotor).
+  void rotorResolvedTerms(const Eigen::Array4d& z, Eigen::Array4d& num,
+                          Eigen::Array4d& den) const noexcept;
+  [[nodiscard]] Eigen::Array4d rotorResolvedRaw(const Eigen::Array4d& z) const noexcept;
+  [[nodiscard]] double rotorResolvedRaw(double z) const noexcept {
+    return rotorResolvedRaw(Eigen::Array4d::Constant(z))[0];
   }
 
   RotorGeometry geometry_;
   RotorAeroParams params_;
+  // The rotors in structure-of-arrays form, one lane per rotor (compute() runs on all four at
+  // once): positions relative to the CoM, k_T and spin·k_I.
+  Eigen::Array4d r_x_ = Eigen::Array4d::Zero();
+  Eigen::Array4d r_y_ = Eigen::Array4d::Zero();
+  Eigen::Array4d r_z_ = Eigen::Array4d::Zero();
+  Eigen::Array4d k_T_ = Eigen::Array4d::Zero();
+  Eigen::Array4d spin_k_I_ = Eigen::Array4d::Zero();
+  double inv_range_ = 0.0;  // 1/ground_effect_range_m
   // Precomputed from the geometry and the parameters.
   double image_num_ = 0.0;      // (R/4)²
   double image_core_sq_ = 0.0;  // (c·R)²

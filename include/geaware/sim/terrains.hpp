@@ -1,8 +1,8 @@
 #pragma once
 // The concrete terrains of SPEC.md §5: flat ground, a tilted plane, a step or table edge, and a
-// height map loaded from a file. Each overrides rayCast: a closed form for the planes and the
-// step; for the height map, steps bounded by its steepest slope ("sphere tracing" for height
-// fields), which never jump over the surface, then bisection.
+// height map loaded from a file. Each overrides rayCast with an exact method: a closed form for
+// the planes and the step; for the height map, a walk over the cells under the ray with the
+// closed-form intersection of each cell's bilinear patch.
 
 #include <algorithm>
 #include <cstddef>
@@ -105,6 +105,12 @@ class TerrainFileError : public std::runtime_error {
   int column_;
 };
 
+/// A ray's first hit on a height map: how far along the ray, and the surface gradient there.
+struct HeightMapHit {
+  double distance_m = 0.0;                             ///< along the unit direction [m]
+  Eigen::Vector2d gradient = Eigen::Vector2d::Zero();  ///< (∂H/∂x, ∂H/∂y) at the hit [-]
+};
+
 /// A regular grid of heights, bilinear between the nodes, held at the border value outside.
 /// Node (i, j) sits at (origin_x + i·cell, origin_y + j·cell); the file stores one CSV row per j
 /// (the first row at origin_y) with one value per i, in metres. File format:
@@ -128,9 +134,19 @@ class HeightMap final : public Terrain {
 
   [[nodiscard]] double heightAt(double x_m, double y_m) const noexcept override;
   [[nodiscard]] Eigen::Vector3d normalAt(double x_m, double y_m) const noexcept override;
+  /// (∂H/∂x, ∂H/∂y) at (x, y) [-]; zero across the border, where the height is held.
+  /// normalAt() is (−∂H/∂x, −∂H/∂y, 1) normalised; this skips the square root (the ranger's
+  /// incidence test needs none).
+  [[nodiscard]] Eigen::Vector2d gradientAt(double x_m, double y_m) const noexcept;
   [[nodiscard]] std::optional<double> rayCast(const Eigen::Vector3d& origin_W,
                                               const Eigen::Vector3d& dir_W,
                                               double max_range_m) const noexcept override;
+  /// rayCast() for a finite origin, a direction of unit length and a finite range > 0 (not
+  /// checked), with the gradient at the hit: the lattice ranger's call (no normalisation, no
+  /// second look-up of the cell for the incidence angle).
+  [[nodiscard]] std::optional<HeightMapHit> rayHitUnit(const Eigen::Vector3d& origin_W,
+                                                       const Eigen::Vector3d& unit_dir_W,
+                                                       double max_range_m) const noexcept;
 
   [[nodiscard]] std::size_t columns() const noexcept { return nx_; }  ///< nodes along x
   [[nodiscard]] std::size_t rows() const noexcept { return ny_; }     ///< nodes along y
@@ -138,6 +154,11 @@ class HeightMap final : public Terrain {
   [[nodiscard]] double maxHeight() const noexcept { return max_z_m_; }  ///< highest node [m]
 
  private:
+  /// The cell walk of rayCast() and rayHitUnit() (the gradient only when kGradient).
+  template <bool kGradient>
+  [[nodiscard]] std::optional<HeightMapHit> walk(const Eigen::Vector3d& origin_W,
+                                                 const Eigen::Vector3d& unit_dir_W,
+                                                 double max_range_m) const noexcept;
   /// Cell index and fractions of (x, y), clamped to the grid.
   void locate(double x_m, double y_m, std::size_t& i, std::size_t& j, double& fx,
               double& fy) const noexcept;
@@ -149,8 +170,7 @@ class HeightMap final : public Terrain {
   std::size_t nx_ = 0;
   std::size_t ny_ = 0;
   std::vector<double> z_;     // row-major, j * nx + i
-  double max_slope_x_ = 0.0;  // max |∂H/∂x| over the map (bilinear: the steepest x edge) [-]
-  double max_slope_y_ = 0.0;  // max |∂H/∂y| [-]
+  double inv_cell_ = 0.0;     // 1/cell [1/m]
   double max_z_m_ = 0.0;      // highest node [m]
 };
 
