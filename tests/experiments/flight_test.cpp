@@ -29,26 +29,7 @@
 #include "geaware/traj/lemniscate.hpp"
 #include "geaware/traj/min_snap.hpp"
 
-// Counting replacement of the global allocation functions (for the whole test binary; it only
-// counts and forwards to malloc/free), so that a test can assert that the loop never allocates.
-namespace {
-std::size_t g_allocations = 0;
-}  // namespace
-
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-#endif
-void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
+#include "geaware_test/allocation_counter.hpp"
 
 namespace geaware::experiments {
 namespace {
@@ -377,15 +358,15 @@ TEST(FlightScenarioValidation, AnImpossibleTrajectoryIsRefusedBeforeFlying) {
 class AllocationProbe final : public FlightObserver {
  public:
   void onTick(const FlightTick& tick) noexcept override {
-    if (ticks_ == 0) at_first_ = g_allocations;
-    at_last_ = g_allocations;
+    if (ticks_ == 0) at_first_ = geaware_test::allocationCount();
+    at_last_ = geaware_test::allocationCount();
     ++ticks_;
     if (tick.controller_active) ++active_;
   }
   std::size_t ticks_ = 0;
   std::size_t active_ = 0;
-  std::size_t at_first_ = 0;
-  std::size_t at_last_ = 0;
+  long at_first_ = 0;
+  long at_last_ = 0;
 };
 
 TEST(Flight, TheLoopDoesNotAllocate) {
@@ -396,7 +377,7 @@ TEST(Flight, TheLoopDoesNotAllocate) {
   EXPECT_EQ(probe.ticks_, r.control_ticks);
   EXPECT_EQ(probe.active_, r.controller_updates);
   EXPECT_GT(probe.ticks_, 3000u);
-  EXPECT_EQ(probe.at_last_ - probe.at_first_, 0u);
+  EXPECT_EQ(probe.at_last_ - probe.at_first_, 0);
 }
 
 std::vector<std::string> splitCsvLine(const std::string& line) {

@@ -14,36 +14,8 @@
 #include <numbers>
 #include <random>
 
+#include "geaware_test/allocation_counter.hpp"
 #include "geaware_test/eigen_matchers.hpp"
-
-// Counting replacements of the allocation functions (for this test executable only): predict_W
-// must not allocate, so the counts must not move across a call. operator new catches standard
-// containers; Eigen's heap storage goes to std::malloc directly, so on glibc malloc itself is
-// interposed too (forwarding to glibc's __libc_malloc).
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-#if defined(__GLIBC__)
-extern "C" void* __libc_malloc(std::size_t n);     // NOLINT(bugprone-reserved-identifier): glibc
-extern "C" void* malloc(std::size_t n) noexcept {  // NOLINT(readability-inconsistent-*)
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  return __libc_malloc(n);
-}
-#endif
-
-// Not inlined: GCC would otherwise see free() applied to the result of a new-expression and warn
-// (-Wmismatched-new-delete), not knowing these are the replacements themselves.
-[[gnu::noinline]] void* operator new(std::size_t n) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n) { return operator new(n); }
-[[gnu::noinline]] void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { ::operator delete(p); }
-void operator delete(void* p, std::size_t) noexcept { ::operator delete(p); }
-void operator delete[](void* p, std::size_t) noexcept { ::operator delete(p); }
 
 namespace geaware::neural {
 namespace {
@@ -221,26 +193,26 @@ TEST(ResidualNetwork, PredictDoesNotAllocate) {
   f.v_W = {0.3, -0.2, 0.1};
   f.rotor_speeds_rpm.setConstant(10500.0);
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  const long before = g_allocations.load();
+  const long before = geaware_test::allocationCount();
   for (int i = 0; i < 100; ++i) {
     f.height_m += 0.001;
     sum += net.predict_W(f);
   }
-  const long after = g_allocations.load();
+  const long after = geaware_test::allocationCount();
   EXPECT_EQ(after - before, 0);
   EXPECT_TRUE(sum.allFinite());
 }
 
 TEST(ResidualNetwork, AllocationCounterSeesAllocations) {
   // Guards the test above: the counters are in effect, for operator new and for Eigen.
-  long before = g_allocations.load();
+  long before = geaware_test::allocationCount();
   auto* p = new int(3);
-  EXPECT_GE(g_allocations.load() - before, 1);
+  EXPECT_GE(geaware_test::allocationCount() - before, 1);
   delete p;
 #if defined(__GLIBC__)
-  before = g_allocations.load();
+  before = geaware_test::allocationCount();
   Eigen::MatrixXd m = Eigen::MatrixXd::Random(40, 40);
-  EXPECT_GE(g_allocations.load() - before, 1);
+  EXPECT_GE(geaware_test::allocationCount() - before, 1);
   EXPECT_TRUE(m.allFinite());
 #endif
 }

@@ -20,28 +20,7 @@
 #include "geaware_test/eigen_matchers.hpp"
 #include "geaware_test/paper_vehicle.hpp"
 
-// Counting replacement of the global allocation functions (for the whole test binary; it only
-// counts and forwards to malloc/free), so that a test can assert that step() never allocates.
-namespace {
-std::size_t g_allocations = 0;
-}  // namespace
-
-// GCC 12 flags free() inside a replaced operator delete as mismatched with the replaced operator
-// new (it cannot see that both are ours); the pairing is correct by construction.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-#endif
-void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
+#include "geaware_test/allocation_counter.hpp"
 
 namespace geaware::sim {
 namespace {
@@ -553,11 +532,11 @@ TEST(Plant, StepDoesNotAllocate) {
   auto map = std::make_shared<HeightMap>(-1.0, -1.0, 0.1, rows);
   PlantState s0 = at({0.05, 0.0, 0.5});
   Plant plant(paperTruth(), map, PlantConfig{}, s0);
-  const std::size_t before = g_allocations;
+  const long before = geaware_test::allocationCount();
   bool crashed = false;
   for (int k = 0; k < 2000 && !crashed; ++k)
     crashed = plant.step({0.1, 0.1, 0.1, 0.1}).crash.has_value();
-  EXPECT_EQ(g_allocations, before);
+  EXPECT_EQ(geaware_test::allocationCount(), before);
   EXPECT_TRUE(crashed);
 }
 

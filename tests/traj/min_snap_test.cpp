@@ -14,26 +14,9 @@
 #include <Eigen/LU>
 
 #include "flat_output_checks.hpp"
+#include "geaware_test/allocation_counter.hpp"
 #include "geaware_test/eigen_matchers.hpp"
 
-// Counting replacement of the global allocation functions, to check that sample() does not
-// allocate (it runs in the control loop). Every other allocation goes through unchanged.
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-// GCC 12 inlines these replacements into std::allocator and then reports free() as
-// mismatched with operator new; the pairing is correct (both ends are replaced here).
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void* operator new(std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t /*size*/) noexcept { std::free(p); }
-#pragma GCC diagnostic pop
 
 namespace {
 
@@ -317,9 +300,9 @@ TEST(MinSnap, AverageSpeedGivesDurationsProportionalToLengthWithAFloor) {
 TEST(MinSnap, SampleDoesNotAllocate) {
   const MinSnapTrajectory traj(loopWaypoints(), kLoopDurations);
   double sink = 0.0;
-  const long before = g_allocations.load();
+  const long before = geaware_test::allocationCount();
   for (int i = -10; i <= 1010; ++i) sink += traj.sample(traj.duration() * i / 1000.0).s_W.x();
-  const long after = g_allocations.load();
+  const long after = geaware_test::allocationCount();
   EXPECT_EQ(after - before, 0);
   EXPECT_TRUE(std::isfinite(sink));
 }
