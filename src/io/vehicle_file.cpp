@@ -14,6 +14,26 @@ extern const std::string_view kBuiltinVehicleYaml;
 
 namespace {
 
+/// A curve given as `table: {heights_m: [...], <values_key>: [...]}` instead of the formula's
+/// keys. Returns false when the section has no table (the caller reads the formula). A table
+/// next to the formula's keys is a problem: one of them would be silently ignored.
+bool readHeightTable(MapReader& section, const std::string& values_key,
+                     const std::vector<std::string>& formula_keys, model::HeightTableParams& out) {
+  if (!section.has("table")) return false;
+  auto t = section.map("table");
+  out.heights_m = t.numbers("heights_m");
+  out.values = t.numbers(values_key);
+  t.rejectUnknownKeys();
+  for (const auto& k : formula_keys) {
+    if (section.has(k)) {
+      (void)section.number(k);  // read, so it is reported once, here, not as unknown
+      section.problem(k, "is not used when the curve is given as a table: give either " +
+                             std::string("the formula's keys or 'table', not both"));
+    }
+  }
+  return true;
+}
+
 model::VehicleParams readVehicle(MapReader& root) {
   model::VehicleParams p;
   p.name = root.text("name");
@@ -49,13 +69,17 @@ model::VehicleParams readVehicle(MapReader& root) {
   {
     auto ge = root.map("ground_effect");
     auto at = ge.map("additional_thrust");
-    p.additional_thrust.g1_m2 = at.number("g1_m2");
-    p.additional_thrust.g2_m2 = at.number("g2_m2");
+    if (!readHeightTable(at, "F_G", {"g1_m2", "g2_m2"}, p.additional_thrust.table)) {
+      p.additional_thrust.g1_m2 = at.number("g1_m2");
+      p.additional_thrust.g2_m2 = at.number("g2_m2");
+    }
     at.rejectUnknownKeys();
     auto lt = ge.map("leveling_torque");
-    p.leveling_torque.g3_m = lt.number("g3_m");
-    p.leveling_torque.g4_m2 = lt.number("g4_m2");
-    p.leveling_torque.scale_m4 = lt.number("scale_m4");
+    if (!readHeightTable(lt, "M_G_m", {"g3_m", "g4_m2", "scale_m4"}, p.leveling_torque.table)) {
+      p.leveling_torque.g3_m = lt.number("g3_m");
+      p.leveling_torque.g4_m2 = lt.number("g4_m2");
+      p.leveling_torque.scale_m4 = lt.number("scale_m4");
+    }
     lt.rejectUnknownKeys();
     ge.rejectUnknownKeys();
   }

@@ -76,6 +76,14 @@ YAML::Node MapReader::required(const std::string& key) {
   return YAML::Node(YAML::NodeType::Undefined);
 }
 
+bool MapReader::has(const std::string& key) const {
+  if (!valid_) return false;
+  for (const auto& kv : node_) {
+    if (kv.first.IsScalar() && kv.first.Scalar() == key) return true;
+  }
+  return false;
+}
+
 double MapReader::number(const std::string& key) {
   const YAML::Node n = required(key);
   if (!n.IsDefined()) return kNaN;

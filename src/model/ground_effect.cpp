@@ -1,6 +1,8 @@
 #include "geaware/model/ground_effect.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <Eigen/Geometry>
 
@@ -13,26 +15,45 @@ GroundEffectModel::GroundEffectModel(const VehicleParams& params)
       inertia_kgm2_(params.inertia_kgm2),
       min_height_m_(params.min_rotor_plane_height_m),
       thrust_(params.additional_thrust),
-      leveling_(params.leveling_torque) {}
+      leveling_(params.leveling_torque) {
+  // The tables' vectors are not needed twice: the HeightTables own the knots.
+  if (!thrust_.table.empty()) {
+    thrust_table_ = HeightTable(std::move(thrust_.table.heights_m), std::move(thrust_.table.values));
+    thrust_.table = {};
+  }
+  if (!leveling_.table.empty()) {
+    leveling_table_ =
+        HeightTable(std::move(leveling_.table.heights_m), std::move(leveling_.table.values));
+    leveling_.table = {};
+  }
+}
 
 double GroundEffectModel::thrustRatio(double h_m) const noexcept {
   const double h = effectiveHeight(h_m);
+  if (!thrust_table_.empty()) return thrust_table_.value(h);
   return thrust_.g2_m2 / (h * h + thrust_.g1_m2);
 }
 
 double GroundEffectModel::thrustRatioSlope(double h_m) const noexcept {
   if (h_m < min_height_m_) return 0.0;  // clamped region: the model is constant there
+  if (!thrust_table_.empty()) return thrust_table_.slope(h_m);
   const double den = h_m * h_m + thrust_.g1_m2;
   return -2.0 * thrust_.g2_m2 * h_m / (den * den);
 }
 
 double GroundEffectModel::levelingCoefficient(double h_m) const noexcept {
   const double h = effectiveHeight(h_m);
+  if (!leveling_table_.empty()) return leveling_table_.value(h);
   const double den = h * h + leveling_.g3_m * h + leveling_.g4_m2;
   return leveling_.scale_m4 * h / (den * den);
 }
 
 double GroundEffectModel::levelingPeakHeight() const noexcept {
+  if (!leveling_table_.empty()) {
+    const auto& v = leveling_table_.values();
+    const auto peak = std::max_element(v.begin(), v.end()) - v.begin();
+    return leveling_table_.heights()[static_cast<std::size_t>(peak)];
+  }
   // d/dh [h/(h²+g3h+g4)²] = 0  ⇔  3h² + g3·h − g4 = 0.
   const double g3 = leveling_.g3_m;
   return (-g3 + std::sqrt(g3 * g3 + 12.0 * leveling_.g4_m2)) / 6.0;

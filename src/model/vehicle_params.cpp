@@ -6,6 +6,38 @@
 #include "geaware/model/field_check.hpp"
 
 namespace geaware::model {
+namespace {
+
+/// A curve table under `key` (e.g. "ground_effect.additional_thrust.table") with the values
+/// list named `values_key`: at least 2 knots, one value per height, heights strictly increasing
+/// in (0, 100] m, values in the curve's range.
+void checkHeightTable(FieldChecker& c, const std::string& key, const std::string& values_key,
+                      const HeightTableParams& t, double lo, double hi, LowerBound lower,
+                      std::string_view unit) {
+  const std::size_t n = t.heights_m.size();
+  if (n < 2) {
+    c.fail(key + ".heights_m", std::to_string(n) + " heights", "at least 2 heights");
+    return;
+  }
+  if (t.values.size() != n) {
+    c.fail(key, "heights_m: " + std::to_string(n) + ", " + values_key + ": " +
+                    std::to_string(t.values.size()) + " entries",
+           "the same number of entries in heights_m and " + values_key);
+    return;
+  }
+  using enum LowerBound;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::string idx = "[" + std::to_string(i) + "]";
+    const bool h_ok = c.range(key + ".heights_m" + idx, t.heights_m[i], 0.0, 100.0, kExclusive, "m");
+    c.range(key + "." + values_key + idx, t.values[i], lo, hi, lower, unit);
+    if (h_ok && i > 0 && !(t.heights_m[i] > t.heights_m[i - 1])) {
+      c.fail(key + ".heights_m" + idx, formatValue(t.heights_m[i]),
+             "strictly greater than the previous height " + formatValue(t.heights_m[i - 1]) + " m");
+    }
+  }
+}
+
+}  // namespace
 
 std::vector<FieldError> VehicleParams::validate() const {
   std::vector<FieldError> errors;
@@ -66,21 +98,34 @@ std::vector<FieldError> VehicleParams::validate() const {
     }
   }
 
-  c.range("ground_effect.additional_thrust.g1_m2", additional_thrust.g1_m2, 0.0, 100.0, kExclusive,
-          "m²");
-  c.range("ground_effect.additional_thrust.g2_m2", additional_thrust.g2_m2, 0.0, 100.0, kInclusive,
-          "m²");
+  if (additional_thrust.table.empty()) {
+    c.range("ground_effect.additional_thrust.g1_m2", additional_thrust.g1_m2, 0.0, 100.0,
+            kExclusive, "m²");
+    c.range("ground_effect.additional_thrust.g2_m2", additional_thrust.g2_m2, 0.0, 100.0,
+            kInclusive, "m²");
+  } else {
+    // F_G > −1 keeps the thrust positive; 10 is ten times the strongest cushion on record.
+    checkHeightTable(c, "ground_effect.additional_thrust.table", "F_G", additional_thrust.table,
+                     -1.0, 10.0, kExclusive, "(dimensionless)");
+  }
   const auto& l = leveling_torque;
-  const bool g3_ok =
-      c.range("ground_effect.leveling_torque.g3_m", l.g3_m, -100.0, 100.0, kInclusive, "m");
-  const bool g4_ok =
-      c.range("ground_effect.leveling_torque.g4_m2", l.g4_m2, 0.0, 100.0, kExclusive, "m²");
-  c.range("ground_effect.leveling_torque.scale_m4", l.scale_m4, 0.0, 100.0, kInclusive, "m⁴");
-  if (g3_ok && g4_ok && l.g3_m < 0.0 && l.g3_m * l.g3_m >= 4.0 * l.g4_m2) {
-    // h² + g3·h + g4 would vanish at some h > 0 and M_G would be infinite there.
-    c.fail("ground_effect.leveling_torque",
-           "g3=" + formatValue(l.g3_m) + ", g4=" + formatValue(l.g4_m2),
-           "h² + g3·h + g4 > 0 for every h ≥ 0 (g3 ≥ 0 or g3² < 4·g4)");
+  if (l.table.empty()) {
+    const bool g3_ok =
+        c.range("ground_effect.leveling_torque.g3_m", l.g3_m, -100.0, 100.0, kInclusive, "m");
+    const bool g4_ok =
+        c.range("ground_effect.leveling_torque.g4_m2", l.g4_m2, 0.0, 100.0, kExclusive, "m²");
+    c.range("ground_effect.leveling_torque.scale_m4", l.scale_m4, 0.0, 100.0, kInclusive, "m⁴");
+    if (g3_ok && g4_ok && l.g3_m < 0.0 && l.g3_m * l.g3_m >= 4.0 * l.g4_m2) {
+      // h² + g3·h + g4 would vanish at some h > 0 and M_G would be infinite there.
+      c.fail("ground_effect.leveling_torque",
+             "g3=" + formatValue(l.g3_m) + ", g4=" + formatValue(l.g4_m2),
+             "h² + g3·h + g4 > 0 for every h ≥ 0 (g3 ≥ 0 or g3² < 4·g4)");
+    }
+  } else {
+    // |M_G| ≤ 1 m: a leveling torque of one thrust times one metre per unit sin δ is already
+    // forty times the measured peak (0.023 m).
+    checkHeightTable(c, "ground_effect.leveling_torque.table", "M_G_m", l.table, -1.0, 1.0,
+                     kInclusive, "m");
   }
 
   const std::size_t n = drag.heights_m.size();

@@ -23,6 +23,7 @@
 
 #include "geaware/io/config_error.hpp"
 #include "geaware/io/vehicle_file.hpp"
+#include "geaware/model/ground_effect.hpp"
 #include "geaware/model/units.hpp"
 #include "geaware_test/eigen_matchers.hpp"
 
@@ -112,6 +113,10 @@ void expectSameVehicle(const model::VehicleParams& a, const model::VehicleParams
   EXPECT_EQ(a.leveling_torque.g3_m, b.leveling_torque.g3_m);
   EXPECT_EQ(a.leveling_torque.g4_m2, b.leveling_torque.g4_m2);
   EXPECT_EQ(a.leveling_torque.scale_m4, b.leveling_torque.scale_m4);
+  EXPECT_EQ(a.additional_thrust.table.heights_m, b.additional_thrust.table.heights_m);
+  EXPECT_EQ(a.additional_thrust.table.values, b.additional_thrust.table.values);
+  EXPECT_EQ(a.leveling_torque.table.heights_m, b.leveling_torque.table.heights_m);
+  EXPECT_EQ(a.leveling_torque.table.values, b.leveling_torque.table.values);
   EXPECT_EQ(a.drag.heights_m, b.drag.heights_m);
   EXPECT_EQ(a.drag.d_x_N_per_mps, b.drag.d_x_N_per_mps);
   EXPECT_EQ(a.drag.d_y_N_per_mps, b.drag.d_y_N_per_mps);
@@ -528,6 +533,77 @@ TEST(VehicleFileErrors, LevelingTorqueDenominatorThatVanishes) {
   EXPECT_EQ(p.key, "ground_effect.leveling_torque");
   EXPECT_EQ(p.line, lineOf(text, "leveling_torque:"));  // the section header
   EXPECT_NE(p.message.find("g4=0.02"), std::string::npos) << p.message;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Ground-effect curves given as tables
+
+constexpr std::string_view kThrustFormula = "    g1_m2: 1.804e-2\n    g2_m2: 7.339e-3\n";
+constexpr std::string_view kLevelingFormula =
+    "    g3_m: -3.365e-1                # shape from the quadrotor platform (peak at 0.186 m)\n"
+    "    g4_m2: 4.126e-2\n";
+
+std::string withThrustTable(std::string_view table) {
+  return replaced(builtinText(), kThrustFormula, table);
+}
+
+TEST(VehicleFileTables, TablesReplaceTheFormulas) {
+  std::string text = withThrustTable(
+      "    table:                       # F_G measured at three heights\n"
+      "      heights_m: [0.08, 0.1, 0.2]\n"
+      "      F_G: [0.30, 0.26, 0.12]\n");
+  text = replaced(text, kLevelingFormula,
+                  "    table:\n      heights_m: [0.1, 0.2, 0.3]\n      M_G_m: [0.015, 0.022, 0.008]\n");
+  text = replaced(text, "    scale_m4: 2.1791e-5\n", "");
+  const model::VehicleParams p = io::parseVehicleYaml(text, kSource);
+  EXPECT_EQ(p.additional_thrust.table.heights_m, (std::vector<double>{0.08, 0.1, 0.2}));
+  EXPECT_EQ(p.additional_thrust.table.values, (std::vector<double>{0.30, 0.26, 0.12}));
+  EXPECT_EQ(p.leveling_torque.table.heights_m, (std::vector<double>{0.1, 0.2, 0.3}));
+  EXPECT_EQ(p.leveling_torque.table.values, (std::vector<double>{0.015, 0.022, 0.008}));
+  const model::GroundEffectModel ge(p);
+  EXPECT_DOUBLE_EQ(ge.thrustRatio(0.1), 0.26);
+  EXPECT_DOUBLE_EQ(ge.levelingCoefficient(0.2), 0.022);
+  EXPECT_DOUBLE_EQ(ge.levelingPeakHeight(), 0.2);
+}
+
+TEST(VehicleFileTables, TableNextToTheFormulaIsRejectedAtTheFormulasKey) {
+  const std::string text = replaced(
+      builtinText(), kThrustFormula,
+      std::string(kThrustFormula) + "    table: {heights_m: [0.08, 0.2], F_G: [0.3, 0.1]}\n");
+  const auto err = rejection(text);
+  ASSERT_TRUE(err.has_value());
+  ASSERT_EQ(err->problems().size(), 2u) << describe(*err);
+  const auto* p = problemFor(*err, "ground_effect.additional_thrust.g1_m2");
+  ASSERT_NE(p, nullptr) << describe(*err);
+  EXPECT_EQ(p->line, lineOf(text, "g1_m2:"));
+  EXPECT_NE(p->message.find("not both"), std::string::npos) << p->message;
+  EXPECT_NE(problemFor(*err, "ground_effect.additional_thrust.g2_m2"), nullptr) << describe(*err);
+}
+
+TEST(VehicleFileTables, MisnamedValuesListIsMissingAndUnknown) {
+  const std::string text =
+      withThrustTable("    table:\n      heights_m: [0.08, 0.2]\n      F_G_m: [0.3, 0.1]\n");
+  const auto err = rejection(text);
+  ASSERT_TRUE(err.has_value());
+  EXPECT_NE(problemFor(*err, "ground_effect.additional_thrust.table.F_G"), nullptr) << describe(*err);
+  const auto* unknown = problemFor(*err, "ground_effect.additional_thrust.table.F_G_m");
+  ASSERT_NE(unknown, nullptr) << describe(*err);
+  EXPECT_EQ(unknown->line, lineOf(text, "F_G_m:"));
+}
+
+TEST(VehicleFileTables, BadTableEntryNamesItsIndexAndLine) {
+  const std::string text = withThrustTable(
+      "    table:\n      heights_m: [0.08, 0.2, 0.15]\n      F_G: [0.3, 0.1, -1.5]\n");
+  const auto err = rejection(text);
+  ASSERT_TRUE(err.has_value());
+  ASSERT_EQ(err->problems().size(), 2u) << describe(*err);
+  const auto* h = problemFor(*err, "ground_effect.additional_thrust.table.heights_m[2]");
+  ASSERT_NE(h, nullptr) << describe(*err);
+  EXPECT_EQ(h->line, lineOf(text, "heights_m: [0.08"));
+  EXPECT_NE(h->message.find("strictly greater"), std::string::npos) << h->message;
+  const auto* f = problemFor(*err, "ground_effect.additional_thrust.table.F_G[2]");
+  ASSERT_NE(f, nullptr) << describe(*err);
+  EXPECT_EQ(f->line, lineOf(text, "F_G: ["));
 }
 
 TEST(VehicleFileErrors, OverlappingPropellers) {

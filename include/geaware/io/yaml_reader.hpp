@@ -34,6 +34,8 @@ class MapReader {
   /// `header_line`: line of the key that opened this map (missing keys are reported there).
   MapReader(YAML::Node node, std::string path, YamlContext& ctx, int header_line = 1);
 
+  /// Whether the map has `key` (with any value). Does not mark the key as read.
+  [[nodiscard]] bool has(const std::string& key) const;
   [[nodiscard]] double number(const std::string& key);
   [[nodiscard]] std::string text(const std::string& key);
   [[nodiscard]] std::vector<double> numbers(const std::string& key);

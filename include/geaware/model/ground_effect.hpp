@@ -7,9 +7,14 @@
 // flown and lie outside the range the curves were fitted on, so every function clamps h up to
 // that minimum (its derivative is then 0). There is no upper limit: F_G and M_G decay to 0.
 // A non-finite h gives a non-finite result; callers guard their inputs (see control/).
+//
+// Each curve is either the paper's closed form or a table of measured points
+// (VehicleParams' `table`, interpolated by model::HeightTable); every function below says the
+// closed form, and uses the table instead where the vehicle gives one.
 
 #include <Eigen/Core>
 
+#include "geaware/model/height_table.hpp"
 #include "geaware/model/vehicle_params.hpp"
 
 namespace geaware::model {
@@ -34,7 +39,8 @@ class GroundEffectModel {
   /// thrust per unit sin δ.
   [[nodiscard]] double levelingCoefficient(double h_m) const noexcept;
 
-  /// Height of the maximum of M_G, (−g3 + √(g3² + 12·g4))/6 [m].
+  /// Height of the maximum of M_G, (−g3 + √(g3² + 12·g4))/6 [m]; for a table, the knot with
+  /// the largest value (PCHIP does not overshoot, so the maximum lies at a knot).
   [[nodiscard]] double levelingPeakHeight() const noexcept;
 
   /// Leveling torque in the body frame [N·m]: R·τ_G = M_G(h)·T·(z_B × z_W) (paper eq. 13).
@@ -60,6 +66,8 @@ class GroundEffectModel {
   double min_height_m_;
   AdditionalThrustParams thrust_;
   LevelingTorqueParams leveling_;
+  HeightTable thrust_table_;    ///< empty: the closed form
+  HeightTable leveling_table_;  ///< empty: the closed form
 };
 
 }  // namespace geaware::model

@@ -35,18 +35,31 @@ struct ThrottleCurveParams {
   double c0_rpm2 = 0.0;  ///< value at zero throttle [rpm²]
 };
 
-/// Additional-thrust ratio F_G(h) = g2 / (h² + g1), h in m (paper eq. 5).
+/// A ground-effect curve given at measured heights instead of by the paper's formula,
+/// interpolated by model::HeightTable (PCHIP between the knots, the first value held below
+/// them, an inverse-square tail above them). Empty: the formula is used.
+struct HeightTableParams {
+  std::vector<double> heights_m;  ///< strictly increasing knot heights [m]
+  std::vector<double> values;     ///< the curve at each knot [the curve's unit]
+  [[nodiscard]] bool empty() const noexcept { return heights_m.empty() && values.empty(); }
+};
+
+/// Additional-thrust ratio F_G(h) = g2 / (h² + g1), h in m (paper eq. 5), or a table of F_G.
 struct AdditionalThrustParams {
   double g1_m2 = 0.0;  ///< [m²]
   double g2_m2 = 0.0;  ///< [m²]; F_G is dimensionless
+  /// When not empty, F_G(h) is this table (values dimensionless) and g1, g2 are not used.
+  HeightTableParams table;
 };
 
 /// Leveling-torque coefficient M_G(h) = scale·h / (h² + g3·h + g4)² [m], i.e. newton-metres of
-/// leveling torque per newton of thrust per unit sin δ (paper eq. 13–14).
+/// leveling torque per newton of thrust per unit sin δ (paper eq. 13–14), or a table of M_G.
 struct LevelingTorqueParams {
   double g3_m = 0.0;       ///< [m]
   double g4_m2 = 0.0;      ///< [m²]
   double scale_m4 = 0.0;   ///< the paper's g5 role, calibrated to measured torques [m⁴]
+  /// When not empty, M_G(h) is this table (values in m) and g3, g4, scale are not used.
+  HeightTableParams table;
 };
 
 /// Rotor-drag coefficients measured per height (paper eq. 18), interpolated linearly in h and
