@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "geaware/ident/least_squares.hpp"
+#include "geaware/ident/table_fit.hpp"
 
 namespace geaware::ident::detail {
 
@@ -39,6 +40,23 @@ inline void warnIfManyOutliers(std::vector<std::string>& warnings, const std::st
     warnings.push_back(what + ": " + std::to_string(s.outliers) + " of " +
                        std::to_string(s.count + s.outliers) +
                        " samples were dropped as outliers (model mismatch or bad data?)");
+  }
+}
+
+/// Adds a warning naming the knots of a table that fewer than `min_samples` samples support:
+/// their values rest on a handful of samples (or on none, when only interpolation reaches them).
+inline void warnSparseKnots(std::vector<std::string>& warnings, const std::string& what,
+                            const TableCurve& curve, std::size_t min_samples = 5) {
+  std::string list;
+  std::size_t count = 0;
+  for (std::size_t j = 0; j < curve.samples.size(); ++j) {
+    if (curve.samples[j] >= min_samples) continue;
+    if (++count <= 5) list += (list.empty() ? "" : ", ") + num(curve.heights_m[j]) + " m";
+  }
+  if (count > 0) {
+    warnings.push_back(what + ": " + std::to_string(count) + " knot(s) with fewer than " +
+                       std::to_string(min_samples) + " samples (" + list +
+                       (count > 5 ? ", …" : "") + "): log more samples there or use fewer knots");
   }
 }
 

@@ -74,28 +74,120 @@ double robustSigma(std::vector<double> v) {
 
 // ------------------------------------------------------------------------------------ linear
 
-LeastSquaresFit fitLinear(std::size_t samples, int parameters, const LinearRow& row,
-                          const RobustOptions& robust) {
+namespace {
+
+/// Dense rows of at most kMaxParameters regressors, stored once as √w-scaled [√w·x, √w·y]
+/// records: the iterations are then tight loops over contiguous memory.
+class DenseDesign {
+ public:
+  DenseDesign(std::size_t samples, int p, const LinearRow& row)
+      : p_(p), stride_(static_cast<std::size_t>(p + 1)) {
+    data_.reserve(samples * stride_);
+    std::array<double, kMaxParameters> x{};
+    for (std::size_t i = 0; i < samples; ++i) {
+      double y = 0.0;
+      double w = 1.0;
+      if (!row(i, x.data(), y, w) || !(w > 0.0)) continue;
+      const double sw = std::sqrt(w);
+      for (int a = 0; a < p; ++a) data_.push_back(sw * x[static_cast<std::size_t>(a)]);
+      data_.push_back(sw * y);
+    }
+  }
+  [[nodiscard]] std::size_t samples() const noexcept { return data_.size() / stride_; }
+  /// Lower triangle of Σ m·x·xᵀ and Σ m·x·y.
+  void normal(const std::vector<double>& m, Eigen::MatrixXd& A, Eigen::VectorXd& b) const {
+    for (std::size_t i = 0; i < m.size(); ++i) {
+      if (m[i] == 0.0) continue;
+      const double* d = data_.data() + i * stride_;
+      for (int a = 0; a < p_; ++a) {
+        const double ma = m[i] * d[a];
+        b(a) += ma * d[p_];
+        for (int c = 0; c <= a; ++c) A(a, c) += ma * d[c];
+      }
+    }
+  }
+  void residuals(const Eigen::VectorXd& beta, std::vector<double>& r) const {
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      const double* d = data_.data() + i * stride_;
+      double pred = 0.0;
+      for (int a = 0; a < p_; ++a) pred += d[a] * beta(a);
+      r[i] = d[p_] - pred;
+    }
+  }
+
+ private:
+  int p_;
+  std::size_t stride_;
+  std::vector<double> data_;
+};
+
+/// Rows with at most kMaxRowEntries non-zero regressors out of many parameters (compressed
+/// rows): the normal matrix costs O(k²) per sample instead of O(p²).
+class SparseDesign {
+ public:
+  SparseDesign(std::size_t samples, int p, const SparseLinearRow& row) {
+    start_.reserve(samples + 1);
+    y_.reserve(samples);
+    start_.push_back(0);
+    std::array<int, kMaxRowEntries> index{};
+    std::array<double, kMaxRowEntries> value{};
+    for (std::size_t i = 0; i < samples; ++i) {
+      double y = 0.0;
+      double w = 1.0;
+      int count = 0;
+      if (!row(i, index.data(), value.data(), count, y, w) || !(w > 0.0)) continue;
+      if (count < 0 || count > kMaxRowEntries) {
+        throw std::invalid_argument("fitSparseLinear: a row has " + std::to_string(count) +
+                                    " entries, at most " + std::to_string(kMaxRowEntries));
+      }
+      const double sw = std::sqrt(w);
+      for (std::size_t e = 0; e < static_cast<std::size_t>(count); ++e) {
+        if (index[e] < 0 || index[e] >= p) {
+          throw std::invalid_argument("fitSparseLinear: parameter index " +
+                                      std::to_string(index[e]) + " outside [0, " +
+                                      std::to_string(p) + ")");
+        }
+        index_.push_back(index[e]);
+        value_.push_back(sw * value[e]);
+      }
+      start_.push_back(index_.size());
+      y_.push_back(sw * y);
+    }
+  }
+  [[nodiscard]] std::size_t samples() const noexcept { return y_.size(); }
+  void normal(const std::vector<double>& m, Eigen::MatrixXd& A, Eigen::VectorXd& b) const {
+    for (std::size_t i = 0; i < m.size(); ++i) {
+      if (m[i] == 0.0) continue;
+      for (std::size_t e = start_[i]; e < start_[i + 1]; ++e) {
+        const double me = m[i] * value_[e];
+        b(index_[e]) += me * y_[i];
+        for (std::size_t f = start_[i]; f < start_[i + 1]; ++f) {
+          // Lower triangle only (row ≥ column), as the dense design fills it.
+          if (index_[f] <= index_[e]) A(index_[e], index_[f]) += me * value_[f];
+        }
+      }
+    }
+  }
+  void residuals(const Eigen::VectorXd& beta, std::vector<double>& r) const {
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      double pred = 0.0;
+      for (std::size_t e = start_[i]; e < start_[i + 1]; ++e) pred += value_[e] * beta(index_[e]);
+      r[i] = y_[i] - pred;
+    }
+  }
+
+ private:
+  std::vector<std::size_t> start_;
+  std::vector<int> index_;
+  std::vector<double> value_;
+  std::vector<double> y_;
+};
+
+/// Steps 1–4 of the header on a design (DenseDesign or SparseDesign) with p parameters.
+template <class Design>
+LeastSquaresFit robustLinear(const Design& design, int p, const RobustOptions& robust) {
   LeastSquaresFit fit;
-  if (parameters < 1 || parameters > kMaxParameters) {
-    throw std::invalid_argument("fitLinear: 1 to 8 parameters");
-  }
-  const int p = parameters;
-  const auto stride = static_cast<std::size_t>(p + 1);
-  // The samples that take part, once, as √w-scaled rows [√w·x, √w·y]: the iterations below
-  // are then tight loops over contiguous memory.
-  std::vector<double> data;
-  data.reserve(samples * stride);
-  std::array<double, kMaxParameters> x{};
-  for (std::size_t i = 0; i < samples; ++i) {
-    double y = 0.0;
-    double w = 1.0;
-    if (!row(i, x.data(), y, w) || !(w > 0.0)) continue;
-    const double sw = std::sqrt(w);
-    for (int a = 0; a < p; ++a) data.push_back(sw * x[static_cast<std::size_t>(a)]);
-    data.push_back(sw * y);
-  }
-  const std::size_t n = data.size() / stride;
+  const std::size_t n = design.samples();
   if (n <= static_cast<std::size_t>(p)) {
     fit.message = "too few samples: " + std::to_string(n) + " for " + std::to_string(p) +
                   (p == 1 ? " parameter" : " parameters");
@@ -111,24 +203,11 @@ LeastSquaresFit fitLinear(std::size_t samples, int parameters, const LinearRow& 
   auto solve = [&]() -> bool {
     Eigen::MatrixXd A = Eigen::MatrixXd::Zero(p, p);
     Eigen::VectorXd b = Eigen::VectorXd::Zero(p);
-    for (std::size_t i = 0; i < n; ++i) {
-      if (m[i] == 0.0) continue;
-      const double* d = data.data() + i * stride;
-      for (int a = 0; a < p; ++a) {
-        const double ma = m[i] * d[a];
-        b(a) += ma * d[p];
-        for (int c = 0; c <= a; ++c) A(a, c) += ma * d[c];
-      }
-    }
-    A = A.selfadjointView<Eigen::Lower>();
+    design.normal(m, A, b);
+    A = A.template selfadjointView<Eigen::Lower>();
     if (!invertNormal(A, A_inv)) return false;
     beta = A_inv * b;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double* d = data.data() + i * stride;
-      double pred = 0.0;
-      for (int a = 0; a < p; ++a) pred += d[a] * beta(a);
-      r[i] = d[p] - pred;
-    }
+    design.residuals(beta, r);
     return true;
   };
 
@@ -191,6 +270,25 @@ LeastSquaresFit fitLinear(std::size_t samples, int parameters, const LinearRow& 
   fit.stats.residual_rms = std::sqrt(ssr / static_cast<double>(fit.stats.count));
   fit.ok = true;
   return fit;
+}
+
+}  // namespace
+
+LeastSquaresFit fitLinear(std::size_t samples, int parameters, const LinearRow& row,
+                          const RobustOptions& robust) {
+  if (parameters < 1 || parameters > kMaxParameters) {
+    throw std::invalid_argument("fitLinear: 1 to 8 parameters");
+  }
+  return robustLinear(DenseDesign(samples, parameters, row), parameters, robust);
+}
+
+LeastSquaresFit fitSparseLinear(std::size_t samples, int parameters, const SparseLinearRow& row,
+                                const RobustOptions& robust) {
+  if (parameters < 1 || parameters > kMaxSparseParameters) {
+    throw std::invalid_argument("fitSparseLinear: 1 to " + std::to_string(kMaxSparseParameters) +
+                                " parameters");
+  }
+  return robustLinear(SparseDesign(samples, parameters, row), parameters, robust);
 }
 
 // --------------------------------------------------------------------------------- nonlinear

@@ -33,26 +33,33 @@ double levelingCoefficientStdError(const LevelingFit& fit, double h) {
   return std::sqrt(grad.dot(fit.covariance * grad));
 }
 
-LevelingFit fitLeveling(const PlatformLog& log, const LevelingInputs& in,
-                        const LevelingFitOptions& options) {
-  LevelingFit out;
+namespace {
+
+/// The tilted samples a leveling fit uses: h, u = s·T·sin δ and τ_G,y = τ_y − τ_B,y.
+struct TiltedSamples {
+  std::vector<double> h;
+  std::vector<double> u;
+  std::vector<double> y;
+  double h_min_m = std::numeric_limits<double>::infinity();
+  double h_max_m = -std::numeric_limits<double>::infinity();
+  double tilt_min_deg = std::numeric_limits<double>::infinity();
+  double tilt_max_deg = -std::numeric_limits<double>::infinity();
+  std::size_t beyond = 0;  ///< samples left out above the tilt limit
+};
+
+TiltedSamples tiltedSamples(const PlatformLog& log, const LevelingInputs& in,
+                            const LevelingFitOptions& options) {
   if (!(in.k_T_N_per_rpm2 > 0.0) || !(in.k_TY_N_per_rpm2 > 0.0) ||
       !(in.diagonal_rotor_distance_m > 0.0)) {
     throw std::invalid_argument("fitLeveling: k_T, k_TY and b must be positive");
   }
   const double arm = std::sqrt(2.0) * in.diagonal_rotor_distance_m / 4.0;
-  // Per tilted sample: h, u = s·T·sin δ and the leveling torque τ_G,y = τ_y − τ_B,y.
-  std::vector<double> h;
-  std::vector<double> u;
-  std::vector<double> y;
-  out.h_min_m = out.tilt_min_deg = std::numeric_limits<double>::infinity();
-  out.h_max_m = out.tilt_max_deg = -std::numeric_limits<double>::infinity();
-  std::size_t beyond = 0;
+  TiltedSamples t;
   for (std::size_t i = 0; i < log.size(); ++i) {
     const double tilt = std::abs(log.tilt_deg[i]);
     if (tilt <= options.level_tilt_deg) continue;
     if (tilt > options.max_tilt_deg) {
-      ++beyond;
+      ++t.beyond;
       continue;
     }
     double S = 0.0;
@@ -62,21 +69,43 @@ LevelingFit fitLeveling(const PlatformLog& log, const LevelingInputs& in,
       S += n2[k];
     }
     const double tau_B = arm * in.k_TY_N_per_rpm2 * (-n2[0] + n2[1] - n2[2] + n2[3]);
-    h.push_back(log.h_m[i]);
-    u.push_back(options.torque_sign * in.k_T_N_per_rpm2 * S *
-                std::sin(log.tilt_deg[i] * model::kDegToRad));
-    y.push_back(log.tau_Nm[1][i] - tau_B);
-    out.h_min_m = std::min(out.h_min_m, log.h_m[i]);
-    out.h_max_m = std::max(out.h_max_m, log.h_m[i]);
-    out.tilt_min_deg = std::min(out.tilt_min_deg, tilt);
-    out.tilt_max_deg = std::max(out.tilt_max_deg, tilt);
+    t.h.push_back(log.h_m[i]);
+    t.u.push_back(options.torque_sign * in.k_T_N_per_rpm2 * S *
+                  std::sin(log.tilt_deg[i] * model::kDegToRad));
+    t.y.push_back(log.tau_Nm[1][i] - tau_B);
+    t.h_min_m = std::min(t.h_min_m, log.h_m[i]);
+    t.h_max_m = std::max(t.h_max_m, log.h_m[i]);
+    t.tilt_min_deg = std::min(t.tilt_min_deg, tilt);
+    t.tilt_max_deg = std::max(t.tilt_max_deg, tilt);
   }
-  if (h.size() < 10) {
+  if (t.h.size() < 10) {
     throw IdentError(log.source + ": cannot fit the leveling torque: only " +
-                     std::to_string(h.size()) + " samples with a tilted board (" +
+                     std::to_string(t.h.size()) + " samples with a tilted board (" +
                      num(options.level_tilt_deg) + "° < |tilt| ≤ " + num(options.max_tilt_deg) +
-                     "°; " + std::to_string(beyond) + " more beyond the tilt limit)");
+                     "°; " + std::to_string(t.beyond) + " more beyond the tilt limit)");
   }
+  return t;
+}
+
+std::string beyondWarning(std::size_t beyond, const LevelingFitOptions& options) {
+  return std::to_string(beyond) + " samples with |tilt| > " + num(options.max_tilt_deg) +
+         "° were left out (the torque saturates)";
+}
+
+}  // namespace
+
+LevelingFit fitLeveling(const PlatformLog& log, const LevelingInputs& in,
+                        const LevelingFitOptions& options) {
+  LevelingFit out;
+  const TiltedSamples t = tiltedSamples(log, in, options);
+  const std::vector<double>& h = t.h;
+  const std::vector<double>& u = t.u;
+  const std::vector<double>& y = t.y;
+  out.h_min_m = t.h_min_m;
+  out.h_max_m = t.h_max_m;
+  out.tilt_min_deg = t.tilt_min_deg;
+  out.tilt_max_deg = t.tilt_max_deg;
+  const std::size_t beyond = t.beyond;
 
   // Initial guess by variable projection: for a fixed shape (g3, g4) the scale is linear;
   // scan the valid shapes on a grid (on at most ~20,000 samples) and keep the best.
@@ -153,10 +182,56 @@ LevelingFit fitLeveling(const PlatformLog& log, const LevelingInputs& in,
                            " m) lies outside the logged heights (" + num(out.h_min_m) + "–" +
                            num(out.h_max_m) + " m): the shape is extrapolated");
   }
-  if (beyond > 0) {
-    out.warnings.push_back(std::to_string(beyond) + " samples with |tilt| > " +
-                           num(options.max_tilt_deg) + "° were left out (the torque saturates)");
+  if (beyond > 0) out.warnings.push_back(beyondWarning(beyond, options));
+  return out;
+}
+
+LevelingTableFit fitLevelingTable(const PlatformLog& log, const LevelingInputs& in,
+                                  const LevelingFitOptions& options) {
+  LevelingTableFit out;
+  const TiltedSamples t = tiltedSamples(log, in, options);
+  out.h_min_m = t.h_min_m;
+  out.h_max_m = t.h_max_m;
+  out.tilt_min_deg = t.tilt_min_deg;
+  out.tilt_max_deg = t.tilt_max_deg;
+  const std::string what = "the leveling torque M_G as a table";
+  const std::vector<double> knots = chooseKnots(t.h, options.table, log.source, what);
+  const std::size_t n_knots = knots.size();
+  out.M_G.samples.assign(n_knots, 0);
+  // τ_G,y = Σ_j M_j·u·φ_j(h): linear in the knot values.
+  const auto fit = fitSparseLinear(
+      t.h.size(), static_cast<int>(n_knots),
+      [&](std::size_t j, int* index, double* value, int& count, double& y, double& w) {
+        count = tableBasis(knots, t.h[j], index, value);
+        for (int e = 0; e < count; ++e) {
+          value[e] *= t.u[j];
+          ++out.M_G.samples[static_cast<std::size_t>(index[e])];
+        }
+        y = t.y[j];
+        w = 1.0;
+        return true;
+      },
+      options.robust);
+  detail::require(fit, log.source, what + " (" + std::to_string(n_knots) + " knots)");
+  out.M_G.heights_m = knots;
+  out.M_G.covariance = fit.covariance;
+  for (std::size_t j = 0; j < n_knots; ++j) out.M_G.values.push_back(fit.estimate(static_cast<int>(j)));
+  out.stats = fit.stats;
+  double peak = -std::numeric_limits<double>::infinity();
+  for (std::size_t j = 0; j < n_knots; ++j) {
+    if (out.M_G.values[j].value > peak) {
+      peak = out.M_G.values[j].value;
+      out.peak_height_m = knots[j];
+    }
   }
+  if (!(peak > 0.0)) {
+    throw IdentError(log.source + ": cannot fit " + what + ": the measured y torque has the " +
+                     "wrong sign for a leveling torque with torque_sign = " +
+                     num(options.torque_sign) + " (check the tilt or torque sign convention)");
+  }
+  detail::warnSparseKnots(out.warnings, what, out.M_G);
+  detail::warnIfManyOutliers(out.warnings, "leveling table fit", out.stats);
+  if (t.beyond > 0) out.warnings.push_back(beyondWarning(t.beyond, options));
   return out;
 }
 

@@ -144,6 +144,80 @@ AdditionalThrustFit fitAdditionalThrust(const PlatformLog& log, const PlatformFi
   return out;
 }
 
+AdditionalThrustTableFit fitAdditionalThrustTable(const PlatformLog& log,
+                                                  const PlatformFitOptions& options) {
+  AdditionalThrustTableFit out;
+  const std::string what = "F_G as a table";
+  const std::vector<std::size_t> idx = levelSamples(log, options.level_tilt_deg);
+  if (idx.size() < 10) {
+    throw IdentError(log.source + ": cannot fit " + what + ": only " + std::to_string(idx.size()) +
+                     " samples with a level board (|tilt| ≤ " + num(options.level_tilt_deg) +
+                     "°), at least 10 are needed");
+  }
+  std::vector<double> h(idx.size());
+  for (std::size_t j = 0; j < idx.size(); ++j) h[j] = log.h_m[idx[j]];
+  out.h_min_m = *std::min_element(h.begin(), h.end());
+  out.h_max_m = *std::max_element(h.begin(), h.end());
+  const std::vector<double> knots = chooseKnots(h, options.thrust_table, log.source, what);
+  const std::size_t n_knots = knots.size();
+  out.tail_samples = static_cast<std::size_t>(
+      std::count_if(h.begin(), h.end(), [&](double x) { return x > knots.back(); }));
+  if (out.tail_samples == 0) {
+    throw IdentError(log.source + ": cannot fit " + what + ": no level sample lies above the top " +
+                     "knot (" + num(knots.back()) + " m). Only there, where F_G follows its 1/h² " +
+                     "tail, can k_T be told apart from F_G: log heights above it, or set the top " +
+                     "knot lower");
+  }
+  // Parameters (k_T, k_T·F_0, …, k_T·F_{N−1}): f̃_z = k_T·S + Σ_j (k_T·F_j)·S·φ_j(h).
+  out.F_G.samples.assign(n_knots, 0);
+  for (double x : h) {
+    int index[2];
+    double weight[2];
+    const int c = tableBasis(knots, x, index, weight);
+    for (int e = 0; e < c; ++e) ++out.F_G.samples[static_cast<std::size_t>(index[e])];
+  }
+  const auto fit = fitSparseLinear(
+      idx.size(), static_cast<int>(n_knots) + 1,
+      [&](std::size_t j, int* index, double* value, int& count, double& y, double& w) {
+        const double S = sumSquares(log, idx[j]);
+        int k[2];
+        double phi[2];
+        const int c = tableBasis(knots, h[j], k, phi);
+        index[0] = 0;
+        value[0] = S;
+        for (int e = 0; e < c; ++e) {
+          index[e + 1] = k[e] + 1;
+          value[e + 1] = S * phi[e];
+        }
+        count = c + 1;
+        y = log.f_N[2][idx[j]];
+        w = 1.0;
+        return S > 0.0;
+      },
+      options.robust);
+  detail::require(fit, log.source, "k_T and " + what + " (" + std::to_string(n_knots) + " knots)");
+  // F_j = b_j/k_T, covariance by the delta method.
+  const double a = fit.x(0);
+  const auto p = static_cast<Eigen::Index>(n_knots + 1);
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(p, p);
+  J(0, 0) = 1.0;
+  for (Eigen::Index j = 1; j < p; ++j) {
+    J(j, 0) = -fit.x(j) / (a * a);
+    J(j, j) = 1.0 / a;
+  }
+  const Eigen::MatrixXd C = J * fit.covariance * J.transpose();
+  out.k_T_N_per_rpm2 = {a, std::sqrt(C(0, 0))};
+  out.F_G.heights_m = knots;
+  out.F_G.covariance = C.bottomRightCorner(p - 1, p - 1);
+  for (Eigen::Index j = 1; j < p; ++j) out.F_G.values.push_back({fit.x(j) / a, std::sqrt(C(j, j))});
+  out.stats = fit.stats;
+  detail::warnIfImprecise(out.warnings, "k_T", out.k_T_N_per_rpm2,
+                          "log more heights above " + num(knots.back()) + " m");
+  detail::warnSparseKnots(out.warnings, what, out.F_G);
+  detail::warnIfManyOutliers(out.warnings, what + " fit", out.stats);
+  return out;
+}
+
 MixingFit fitMixing(const PlatformLog& log, double b, const PlatformFitOptions& options) {
   MixingFit out;
   const double arm = std::sqrt(2.0) * b / 4.0;

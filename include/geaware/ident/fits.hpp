@@ -10,3 +10,4 @@
 #include "geaware/ident/leveling_fit.hpp"    // M_G(h) from the tilted board
 #include "geaware/ident/platform_fit.hpp"    // k_T, F_G and the mixing coefficients, level board
 #include "geaware/ident/rotor_fit.hpp"       // k_T, k_I, J_R, throttle curve from the stand
+#include "geaware/ident/table_fit.hpp"       // knots and basis of curves fitted as tables

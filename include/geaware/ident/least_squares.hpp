@@ -98,6 +98,23 @@ struct NonlinearProblem {
   std::vector<double> upper;
 };
 
+/// Most non-zero regressors in one row of a sparse linear problem, and most parameters.
+inline constexpr int kMaxRowEntries = 8;
+inline constexpr int kMaxSparseParameters = 1000;
+
+/// Sample i of a sparse linear problem y = Σ_e value[e]·β[index[e]]: fills up to
+/// kMaxRowEntries (index, value) pairs and sets `count`, `y` and `w`. Return false to leave
+/// the sample out. For curves given at many knots (a tabulated F_G), where each sample touches
+/// only its neighbouring knots.
+using SparseLinearRow = std::function<bool(std::size_t i, int* index, double* value, int& count,
+                                           double& y, double& w)>;
+
+/// The same robust weighted linear least squares as fitLinear for up to
+/// kMaxSparseParameters parameters; each sample costs O(count²), the solve O(p³).
+[[nodiscard]] LeastSquaresFit fitSparseLinear(std::size_t samples, int parameters,
+                                              const SparseLinearRow& row,
+                                              const RobustOptions& robust = {});
+
 /// Robust nonlinear least squares with Ceres from the initial guess x0.
 [[nodiscard]] LeastSquaresFit fitNonlinear(const NonlinearProblem& problem,
                                            const Eigen::VectorXd& x0,

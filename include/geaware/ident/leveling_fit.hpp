@@ -18,6 +18,7 @@
 
 #include "geaware/ident/least_squares.hpp"
 #include "geaware/ident/rig_logs.hpp"
+#include "geaware/ident/table_fit.hpp"
 
 namespace geaware::ident {
 
@@ -28,6 +29,8 @@ struct LevelingFitOptions {
   /// Sign s in y_Wᵀτ_G = s·M_G(h)·T·sin δ: −1 for the platform convention above. A fit whose
   /// data have the other sign fails with a message saying so.
   double torque_sign = -1.0;
+  /// Knots of M_G as a table (fitLevelingTable); by default every logged tilted height.
+  TableOptions table;
 };
 
 /// The vehicle constants the leveling fit needs (from the level-board fits or a vehicle file).
@@ -50,6 +53,23 @@ struct LevelingFit {
   double tilt_max_deg = kNaN;
   std::vector<std::string> warnings;
 };
+
+/// y_Wᵀτ_G = s·M_G(h)·T·sin δ with M_G a table (table_fit.hpp), linear in the knot values.
+struct LevelingTableFit {
+  TableCurve M_G;                   ///< values in m (N·m per N of thrust per unit sin δ)
+  FitStats stats;                   ///< residuals in N·m
+  double peak_height_m = kNaN;      ///< the knot with the largest M_G
+  double h_min_m = kNaN;            ///< height range of the samples used [m]
+  double h_max_m = kNaN;
+  double tilt_min_deg = kNaN;       ///< |tilt| range of the samples used [deg]
+  double tilt_max_deg = kNaN;
+  std::vector<std::string> warnings;
+};
+
+/// Throws IdentError when the log has too few tilted samples or the fit fails.
+[[nodiscard]] LevelingTableFit fitLevelingTable(const PlatformLog& log,
+                                                const LevelingInputs& inputs,
+                                                const LevelingFitOptions& options = {});
 
 /// Throws IdentError when the log has too few tilted samples or the fit fails.
 [[nodiscard]] LevelingFit fitLeveling(const PlatformLog& log, const LevelingInputs& inputs,

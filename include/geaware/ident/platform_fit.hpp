@@ -24,6 +24,7 @@
 
 #include "geaware/ident/least_squares.hpp"
 #include "geaware/ident/rig_logs.hpp"
+#include "geaware/ident/table_fit.hpp"
 
 namespace geaware::ident {
 
@@ -32,6 +33,10 @@ struct PlatformFitOptions {
   double level_tilt_deg = 0.5;   ///< samples with |tilt| ≤ this count as a level board [deg]
   int height_bands = 6;          ///< equal-count height bands for the per-height coefficients
   std::size_t min_band_samples = 20;  ///< bands with fewer samples are not fitted
+  /// Knots of F_G as a table (fitAdditionalThrustTable). Samples above the top knot follow the
+  /// 1/h² tail and are what separates k_T from F_G, so the default leaves heights above 0.5 m
+  /// to the tail.
+  TableOptions thrust_table = {{}, 0.5, 120};
 };
 
 /// f̃_z = k_T·Σn²·(1 + F_G(h)), F_G(h) = g2/(h² + g1).
@@ -43,6 +48,17 @@ struct AdditionalThrustFit {
   FitStats stats;                                        ///< residuals in N
   double h_min_m = kNaN;                                 ///< height range of the samples [m]
   double h_max_m = kNaN;
+  std::vector<std::string> warnings;
+};
+
+/// f̃_z = k_T·Σn²·(1 + F_G(h)) with F_G a table (table_fit.hpp): k_T and the knot values.
+struct AdditionalThrustTableFit {
+  Estimate k_T_N_per_rpm2;
+  TableCurve F_G;          ///< dimensionless values; covariance by the delta method
+  FitStats stats;          ///< residuals in N
+  double h_min_m = kNaN;   ///< height range of the level samples [m]
+  double h_max_m = kNaN;
+  std::size_t tail_samples = 0;  ///< samples above the top knot (they fix k_T)
   std::vector<std::string> warnings;
 };
 
@@ -71,6 +87,11 @@ struct MixingFit {
 /// The joint fit of k_T, g1, g2 on the level samples. Throws IdentError.
 [[nodiscard]] AdditionalThrustFit fitAdditionalThrust(const PlatformLog& log,
                                                       const PlatformFitOptions& options = {});
+
+/// The joint fit of k_T and F_G at the knots of options.thrust_table, linear in (k_T,
+/// k_T·F_G(h_j)). Throws IdentError, e.g. when no level sample lies above the top knot.
+[[nodiscard]] AdditionalThrustTableFit fitAdditionalThrustTable(
+    const PlatformLog& log, const PlatformFitOptions& options = {});
 
 /// k_TX, k_TY, k_I overall and per height band; b is the diagonal rotor distance [m].
 /// Throws IdentError when the log has too few level samples.
