@@ -17,10 +17,14 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <functional>
+#include <optional>
 
 #include "geaware/ident/fits.hpp"
 #include "geaware/ident/vehicle_writer.hpp"
+#include "geaware/io/range.hpp"
 #include "geaware/io/vehicle_file.hpp"
+#include "geaware/model/height_table.hpp"
 #include "geaware/model/ground_effect.hpp"
 #include "geaware/model/units.hpp"
 #include "geaware/report/page.hpp"
@@ -42,6 +46,9 @@ struct IdentifyOptions {
   double tilt_limit_deg = 10.0;
   int height_bands = 6;
   bool hover = false;
+  std::string ground_effect = "paper";  ///< paper: the closed forms; table: values at knots
+  double table_top_m = 0.5;             ///< automatic F_G knots up to this height [m]
+  std::string table_heights;            ///< explicit knots FROM:TO:STEP (empty: automatic)
 };
 
 /// One row of the parameter table: the vehicle-file key (or a descriptive name), the estimate
@@ -123,6 +130,43 @@ std::size_t plotStride(std::size_t n, std::size_t max_points = 4000) {
   return std::max<std::size_t>(1, n / max_points);
 }
 
+std::vector<double> values(const ident::TableCurve& c) {
+  std::vector<double> v;
+  for (const auto& e : c.values) v.push_back(e.value);
+  return v;
+}
+
+/// One parameter row per knot of a fitted table, "F_G(h = 0.07 m)".
+void addTableParams(Outcome& o, const std::string& name, const ident::TableCurve& c,
+                    const std::string& unit) {
+  for (std::size_t j = 0; j < c.values.size(); ++j) {
+    o.params.push_back({fmt::format("{}(h = {:.4g} m)", name, c.heights_m[j]), c.values[j], unit});
+  }
+}
+
+void setTable(ident::VehicleUpdate& u, const std::string& section, const ident::TableCurve& c) {
+  std::vector<double> errors;
+  for (const auto& e : c.values) errors.push_back(e.std_error);
+  u.setTable(section, c.heights_m, values(c), errors);
+}
+
+/// {"heights_m": [...], "<values_key>": [...], "std_error": [...], "samples": [...]}
+std::string tableJson(const ident::TableCurve& c, const std::string& values_key) {
+  std::string h;
+  std::string v;
+  std::string e;
+  std::string n;
+  for (std::size_t j = 0; j < c.values.size(); ++j) {
+    const char* sep = j ? "," : "";
+    h += sep + jsonNumber(c.heights_m[j]);
+    v += sep + jsonNumber(c.values[j].value);
+    e += sep + jsonNumber(c.values[j].std_error);
+    n += fmt::format("{}{}", sep, c.samples[j]);
+  }
+  return fmt::format("{{\"heights_m\":[{}],{}:[{}],\"std_error\":[{}],\"samples\":[{}]}}", h,
+                     jsonString(values_key), v, e, n);
+}
+
 // ------------------------------------------------------------------------------- the kinds
 
 Outcome identifyRotor(const IdentifyOptions& opt, const std::map<std::string, std::string>& cols,
@@ -190,27 +234,63 @@ Outcome identifyPlatform(const IdentifyOptions& opt, const std::map<std::string,
   ident::PlatformFitOptions po;
   po.robust = robustOptions(opt.loss);
   po.height_bands = opt.height_bands;
+  const bool table = opt.ground_effect == "table";
+  if (table) {
+    po.thrust_table.top_m = opt.table_top_m;
+    if (!opt.table_heights.empty()) {
+      po.thrust_table.heights_m = io::parseRange(opt.table_heights, "--table-heights", 1000).values();
+    }
+  }
   Outcome o;
-  const auto thrust = ident::fitAdditionalThrust(log, po);
   const auto mixing = ident::fitMixing(log, base.diagonal_rotor_distance_m, po);
-  o.params = {{"rotor.k_T_N_per_rpm2", thrust.k_T_N_per_rpm2, "N/rpm²"},
-              {"ground_effect.additional_thrust.g1_m2", thrust.g1_m2, "m²"},
-              {"ground_effect.additional_thrust.g2_m2", thrust.g2_m2, "m²"},
-              {"k_T of the top height band (paper's method)", mixing.k_T_top_N_per_rpm2, "N/rpm²"}};
-  o.fits = {{"f_z = k_T·Σn²·(1 + F_G(h))", thrust.stats, "N"}};
+  // F_G in the chosen form: k_T, the curve for the plots, and the update.
+  ident::Estimate k_T;
+  std::function<double(double)> fitted_F;
+  double h_min = 0.0;
+  double h_max = 0.0;
+  std::string tables_json;
+  if (table) {
+    const auto fit = ident::fitAdditionalThrustTable(log, po);
+    k_T = fit.k_T_N_per_rpm2;
+    o.params.push_back({"rotor.k_T_N_per_rpm2", k_T, "N/rpm²"});
+    addTableParams(o, "F_G", fit.F_G, "-");
+    o.fits = {{"f_z = k_T·Σn²·(1 + F_G(h))", fit.stats, "N"}};
+    o.warnings = fit.warnings;
+    o.update.set("rotor.k_T_N_per_rpm2", k_T);
+    setTable(o.update, "ground_effect.additional_thrust", fit.F_G);
+    fitted_F = [curve = model::HeightTable(fit.F_G.heights_m, values(fit.F_G))](double h) {
+      return curve.value(h);
+    };
+    h_min = fit.h_min_m;
+    h_max = fit.h_max_m;
+    tables_json += "\"additional_thrust\":" + tableJson(fit.F_G, "F_G");
+  } else {
+    const auto fit = ident::fitAdditionalThrust(log, po);
+    k_T = fit.k_T_N_per_rpm2;
+    o.params = {{"rotor.k_T_N_per_rpm2", k_T, "N/rpm²"},
+                {"ground_effect.additional_thrust.g1_m2", fit.g1_m2, "m²"},
+                {"ground_effect.additional_thrust.g2_m2", fit.g2_m2, "m²"}};
+    o.fits = {{"f_z = k_T·Σn²·(1 + F_G(h))", fit.stats, "N"}};
+    o.warnings = fit.warnings;
+    ident::addAdditionalThrust(o.update, fit);
+    fitted_F = [g1 = fit.g1_m2.value, g2 = fit.g2_m2.value](double h) { return g2 / (h * h + g1); };
+    h_min = fit.h_min_m;
+    h_max = fit.h_max_m;
+  }
+  o.params.push_back({"k_T of the top height band (paper's method)", mixing.k_T_top_N_per_rpm2, "N/rpm²"});
   if (mixing.k_TX_N_per_rpm2) o.params.push_back({"rotor.k_TX_N_per_rpm2", *mixing.k_TX_N_per_rpm2, "N/rpm²"});
   if (mixing.k_TY_N_per_rpm2) o.params.push_back({"rotor.k_TY_N_per_rpm2", *mixing.k_TY_N_per_rpm2, "N/rpm²"});
   if (mixing.k_I_Nm_per_rpm2) o.params.push_back({"rotor.k_I_Nm_per_rpm2", *mixing.k_I_Nm_per_rpm2, "N·m/rpm²"});
   o.fits.push_back({"roll torque", mixing.roll, "N·m"});
   o.fits.push_back({"pitch torque", mixing.pitch, "N·m"});
   o.fits.push_back({"yaw torque", mixing.yaw, "N·m"});
-  o.warnings = thrust.warnings;
   o.warnings.insert(o.warnings.end(), mixing.warnings.begin(), mixing.warnings.end());
-  ident::addAdditionalThrust(o.update, thrust);
   ident::addMixing(o.update, mixing);
 
   // The leveling torque, when the log has tilted-board samples.
-  std::optional<ident::LevelingFit> leveling;
+  std::function<double(double)> fitted_M;
+  double lev_h_min = 0.0;
+  double lev_h_max = 0.0;
   const bool tilted = std::any_of(log.tilt_deg.begin(), log.tilt_deg.end(),
                                   [&](double d) { return std::abs(d) > po.level_tilt_deg; });
   if (tilted) {
@@ -218,13 +298,34 @@ Outcome identifyPlatform(const IdentifyOptions& opt, const std::map<std::string,
     lo.robust = po.robust;
     lo.max_tilt_deg = opt.tilt_limit_deg;
     const double k_TY = mixing.k_TY_N_per_rpm2 ? mixing.k_TY_N_per_rpm2->value : base.rotor.k_TY_N_per_rpm2;
-    leveling = ident::fitLeveling(log, {thrust.k_T_N_per_rpm2.value, k_TY, base.diagonal_rotor_distance_m}, lo);
-    o.params.push_back({"ground_effect.leveling_torque.g3_m", leveling->g3_m, "m"});
-    o.params.push_back({"ground_effect.leveling_torque.g4_m2", leveling->g4_m2, "m²"});
-    o.params.push_back({"ground_effect.leveling_torque.scale_m4", leveling->scale_m4, "m⁴"});
-    o.fits.push_back({"leveling torque", leveling->stats, "N·m"});
-    o.warnings.insert(o.warnings.end(), leveling->warnings.begin(), leveling->warnings.end());
-    ident::addLeveling(o.update, *leveling);
+    const ident::LevelingInputs in{k_T.value, k_TY, base.diagonal_rotor_distance_m};
+    if (table) {
+      if (!opt.table_heights.empty()) lo.table.heights_m = po.thrust_table.heights_m;
+      const auto fit = ident::fitLevelingTable(log, in, lo);
+      addTableParams(o, "M_G", fit.M_G, "m");
+      o.fits.push_back({"leveling torque", fit.stats, "N·m"});
+      o.warnings.insert(o.warnings.end(), fit.warnings.begin(), fit.warnings.end());
+      setTable(o.update, "ground_effect.leveling_torque", fit.M_G);
+      fitted_M = [curve = model::HeightTable(fit.M_G.heights_m, values(fit.M_G))](double h) {
+        return curve.value(h);
+      };
+      lev_h_min = fit.h_min_m;
+      lev_h_max = fit.h_max_m;
+      tables_json += ",\"leveling_torque\":" + tableJson(fit.M_G, "M_G_m");
+    } else {
+      const auto fit = ident::fitLeveling(log, in, lo);
+      o.params.push_back({"ground_effect.leveling_torque.g3_m", fit.g3_m, "m"});
+      o.params.push_back({"ground_effect.leveling_torque.g4_m2", fit.g4_m2, "m²"});
+      o.params.push_back({"ground_effect.leveling_torque.scale_m4", fit.scale_m4, "m⁴"});
+      o.fits.push_back({"leveling torque", fit.stats, "N·m"});
+      o.warnings.insert(o.warnings.end(), fit.warnings.begin(), fit.warnings.end());
+      ident::addLeveling(o.update, fit);
+      fitted_M = [f = fit](double h) {
+        return ident::levelingCoefficient(f.g3_m.value, f.g4_m2.value, f.scale_m4.value, h);
+      };
+      lev_h_min = fit.h_min_m;
+      lev_h_max = fit.h_max_m;
+    }
   } else {
     o.warnings.push_back("no tilted-board samples: the leveling torque is not identified");
   }
@@ -252,12 +353,13 @@ Outcome identifyPlatform(const IdentifyOptions& opt, const std::map<std::string,
                          js(hb.k_I_Nm_per_rpm2));
   }
   o.json_extra = bands + "]";
+  if (table) o.json_extra += ",\"tables\":{" + tables_json + "}";
   addStatsTable(o, page);
   page.addTable(band_table);
 
   // F_G: the paper's per-sample F̃_G (eq. 9) with the fitted k_T, the fit and the base curve.
   const model::GroundEffectModel base_ge(base);
-  const auto F = ident::measuredAdditionalThrust(log, thrust.k_T_N_per_rpm2.value);
+  const auto F = ident::measuredAdditionalThrust(log, k_T.value);
   report::Plot fg{"Additional thrust F_G(h) (level board)", "h [m]", "F_G [-]", {}};
   report::Series pts = series("F̃_G = f̃_z/T̃ − 1 (eq. 9)", "markers", "");
   for (std::size_t i = 0; i < log.size(); i += plotStride(log.size())) {
@@ -265,18 +367,18 @@ Outcome identifyPlatform(const IdentifyOptions& opt, const std::map<std::string,
     pts.x.push_back(log.h_m[i]);
     pts.y.push_back(F[i]);
   }
-  report::Series fitted = series("fit g2/(h² + g1)", "lines", "");
+  report::Series fitted = series(table ? "fit, table (PCHIP)" : "fit g2/(h² + g1)", "lines", "");
   report::Series prior = series("base vehicle", "lines", "dash");
-  for (double h = thrust.h_min_m; h <= thrust.h_max_m + 1e-9; h += (thrust.h_max_m - thrust.h_min_m) / 200.0) {
+  for (int k = 0; k <= 400; ++k) {
+    const double h = h_min + (h_max - h_min) * k / 400.0;
     fitted.x.push_back(h);
-    fitted.y.push_back(thrust.g2_m2.value / (h * h + thrust.g1_m2.value));
+    fitted.y.push_back(fitted_F(h));
     prior.x.push_back(h);
     prior.y.push_back(base_ge.thrustRatio(h));
-    if (!(thrust.h_max_m > thrust.h_min_m)) break;
   }
   fg.series = {pts, fitted, prior};
   page.addPlot(fg);
-  if (leveling) {
+  if (fitted_M) {
     report::Plot mg{"Leveling coefficient M_G(h) (tilted board)", "h [m]", "M_G [m]", {}};
     report::Series mp = series("−τ_G,y/(T·sin δ)", "markers", "");
     const double arm = std::sqrt(2.0) * base.diagonal_rotor_distance_m / 4.0;
@@ -286,17 +388,17 @@ Outcome identifyPlatform(const IdentifyOptions& opt, const std::map<std::string,
       if (tilt <= po.level_tilt_deg || tilt > opt.tilt_limit_deg) continue;
       std::array<double, 4> n2{};
       for (std::size_t k = 0; k < 4; ++k) n2[k] = log.n_rpm[k][i] * log.n_rpm[k][i];
-      const double T = thrust.k_T_N_per_rpm2.value * (n2[0] + n2[1] + n2[2] + n2[3]);
+      const double T = k_T.value * (n2[0] + n2[1] + n2[2] + n2[3]);
       const double tau_G = log.tau_Nm[1][i] - arm * k_TY * (-n2[0] + n2[1] - n2[2] + n2[3]);
       mp.x.push_back(log.h_m[i]);
       mp.y.push_back(-tau_G / (T * std::sin(log.tilt_deg[i] * model::kDegToRad)));
     }
-    report::Series mf = series("fit", "lines", "");
+    report::Series mf = series(table ? "fit, table (PCHIP)" : "fit", "lines", "");
     report::Series mb = series("base vehicle", "lines", "dash");
-    for (int k = 0; k <= 200; ++k) {
-      const double h = leveling->h_min_m + (leveling->h_max_m - leveling->h_min_m) * k / 200.0;
+    for (int k = 0; k <= 400; ++k) {
+      const double h = lev_h_min + (lev_h_max - lev_h_min) * k / 400.0;
       mf.x.push_back(h);
-      mf.y.push_back(ident::levelingCoefficient(leveling->g3_m.value, leveling->g4_m2.value, leveling->scale_m4.value, h));
+      mf.y.push_back(fitted_M(h));
       mb.x.push_back(h);
       mb.y.push_back(base_ge.levelingCoefficient(h));
     }
@@ -423,6 +525,13 @@ int runIdentify(const IdentifyOptions& opt) {
   std::string cmd = "geaware identify " + opt.kind + " " + opt.log;
   if (!opt.vehicle.empty()) cmd += " --vehicle " + opt.vehicle;
   if (opt.kind == "platform") cmd += fmt::format(" --tilt-limit {}", opt.tilt_limit_deg);
+  if (opt.kind == "platform") {
+    cmd += " --ground-effect " + opt.ground_effect;
+    if (opt.ground_effect == "table") {
+      cmd += opt.table_heights.empty() ? fmt::format(" --table-top {}", opt.table_top_m)
+                                       : " --table-heights " + opt.table_heights;
+    }
+  }
   if (opt.kind == "platform" || opt.kind == "flight") cmd += fmt::format(" --height-bands {}", opt.height_bands);
   if (opt.hover) cmd += " --hover";
   for (const auto& c : opt.columns) cmd += " --column " + c;
@@ -514,6 +623,18 @@ Runner addIdentifyCommand(CLI::App& app) {
     if (name == "platform") {
       sub->add_option("--tilt-limit", opts->tilt_limit_deg, "largest board tilt used for the leveling torque [deg]")
           ->capture_default_str();
+      sub->add_option("--ground-effect", opts->ground_effect,
+                      "form of F_G and M_G: 'paper' (g2/(h² + g1), scale·h/(h² + g3·h + g4)²) or 'table' "
+                      "(values at knot heights, for curves the closed forms do not follow)")
+          ->check(CLI::IsMember({"paper", "table"}))
+          ->capture_default_str();
+      sub->add_option("--table-top", opts->table_top_m,
+                      "table: F_G knots at the logged heights up to this one; level samples above it follow the "
+                      "1/h² tail and fix k_T [m]")
+          ->check(CLI::PositiveNumber)
+          ->capture_default_str();
+      sub->add_option("--table-heights", opts->table_heights,
+                      "table: explicit knot heights FROM:TO:STEP for both curves [m] (instead of the logged heights)");
     }
     if (name == "platform" || name == "flight") {
       sub->add_option("--height-bands", opts->height_bands, "number of height bands")->check(CLI::Range(1, 100))->capture_default_str();

@@ -11,8 +11,20 @@
 // base), the whole file is re-emitted by yaml-cpp instead: all keys and values are kept, the
 // comments are lost, and MergeResult::comments_preserved says so.
 //
+// A ground-effect curve (ground_effect.additional_thrust or ground_effect.leveling_torque) may
+// instead be set as a table of knots (VehicleUpdate::setTable). Its section is then rewritten
+// in the text: the lines under the section's key (those blank or indented deeper than it,
+// trailing blank lines excepted) become `table:` with `heights_m` and `F_G` (or `M_G_m`)
+// flow lists, and a `# std. errors of F_G: [...]` line when the errors are known; the key's
+// own trailing comment, which described the formula, now describes the table. Formula keys
+// merged into a base whose section holds a table rewrite the section the same way, into the
+// formula's lines; all of that curve's formula keys must then be set (std::invalid_argument
+// otherwise). Every line outside the rewritten sections is kept byte for byte. A section
+// written in flow style (`additional_thrust: {g1_m2: …}`) falls back to re-emitting.
+//
 // The result is always checked: it must load with io::parseVehicleYaml (strict keys and the
-// physical validation) and read back the merged values, or nothing is written.
+// physical validation) and read back the merged values, tables included, or nothing is
+// written.
 
 #include <filesystem>
 #include <string>
@@ -31,10 +43,13 @@ namespace geaware::ident {
 class VehicleUpdate {
  public:
   struct Entry {
-    std::string key;
-    std::vector<double> values;   ///< one value for a scalar key
-    bool list = false;            ///< the drag table's lists
-    double std_error = kNaN;      ///< written in the line's comment when known
+    std::string key;                 ///< key path; for a table, the section ("ground_effect.…")
+    std::vector<double> values;      ///< one value for a scalar key; a table's curve values
+    bool list = false;               ///< the drag table's lists
+    double std_error = kNaN;         ///< written in the line's comment when known
+    bool table = false;              ///< a ground-effect curve table (setTable)
+    std::vector<double> heights_m;   ///< the table's knots [m]
+    std::vector<double> std_errors;  ///< standard errors of the table's values, or empty
   };
 
   /// Sets a scalar key; throws std::invalid_argument for a key identification does not fit
@@ -43,6 +58,14 @@ class VehicleUpdate {
   void set(const std::string& key, const Estimate& e) { set(key, e.value, e.std_error); }
   /// Sets one of the drag table's lists.
   void setList(const std::string& key, std::vector<double> values);
+  /// Sets a ground-effect curve as a table: `section` is "ground_effect.additional_thrust"
+  /// (values are F_G) or "ground_effect.leveling_torque" (values are M_G in m). Needs at least
+  /// 2 knots, one finite value per knot, and std_errors empty or one per knot; throws
+  /// std::invalid_argument otherwise (heights and ranges are checked by the merge's
+  /// validation). Replaces the section's formula keys set earlier, and a later set() of one
+  /// of its formula keys replaces the table.
+  void setTable(const std::string& section, std::vector<double> heights_m,
+                std::vector<double> values, std::vector<double> std_errors = {});
 
   /// Text for the comments of the replaced lines, e.g. the log file ("identified from …").
   std::string provenance;
@@ -50,7 +73,7 @@ class VehicleUpdate {
   [[nodiscard]] const std::vector<Entry>& entries() const noexcept { return entries_; }
   [[nodiscard]] bool empty() const noexcept { return entries_.empty(); }
 
-  /// The keys identification may write.
+  /// The scalar and list keys identification may write (tables go by section: setTable).
   [[nodiscard]] static const std::vector<std::string>& fittedKeys();
 
  private:
@@ -76,7 +99,9 @@ struct MergeResult {
 };
 
 /// Merges into the text of a base vehicle file (`base_name` names it in errors). Throws
-/// io::ConfigError when the base or the result is not a valid vehicle file.
+/// io::ConfigError when the base or the result is not a valid vehicle file, and
+/// std::invalid_argument when the update sets only some formula keys of a curve that the
+/// base gives as a table.
 [[nodiscard]] MergeResult mergeVehicleYaml(std::string_view base_text, const std::string& base_name,
                                            const VehicleUpdate& update);
 
