@@ -35,6 +35,7 @@ struct BenchOptions {
   bool no_cache = false;
   bool truth_mismatch = false;
   bool no_turbulence = false;
+  std::string ground_effect = "paper";  ///< form the calibration identifies F_G and M_G in
   bool check = false;
 };
 
@@ -88,6 +89,7 @@ int runBench(const BenchOptions& o, const std::string& command) {
   }
   if (!o.no_cache) c.cache_dir = o.cache;
   c.turbulence = !o.no_turbulence;
+  c.calibration.tables = o.ground_effect == "table";
   if (o.truth_mismatch) c.mismatch = experiments::defaultTruthMismatch();
   c.collect_series = !o.report.empty();
   auto progress = std::make_shared<Progress>();
@@ -98,6 +100,9 @@ int runBench(const BenchOptions& o, const std::string& command) {
 
   std::FILE* human = o.json == "-" ? stderr : stdout;
   fmt::print(human, "{}\n", command);
+  if (c.calibration.tables) {
+    fmt::print(human, "calibration: F_G and M_G identified as tables (--ground-effect table)\n");
+  }
   if (o.truth_mismatch || o.no_turbulence) {
     fmt::print(human, "truth overrides:{}{}\n",
                o.truth_mismatch ? " per-flight mismatch (mass ±1 %, inertia ±10 %, CoG ±2 mm xy "
@@ -161,6 +166,11 @@ Runner addBenchCommand(CLI::App& app) {
                 "give every flight a seeded truth mismatch the controller does not know (mass ±1 %, "
                 "inertia ±10 %, CoG ±2 mm xy ±5 mm z, thrust ±2 %)");
   cmd->add_flag("--no-turbulence", o->no_turbulence, "switch off the truth's near-ground turbulence");
+  cmd->add_option("--ground-effect", o->ground_effect,
+                  "form in which the calibration identifies F_G and M_G for the controllers: 'paper' (closed "
+                  "forms) or 'table' (values at the swept heights)")
+      ->check(CLI::IsMember({"paper", "table"}))
+      ->capture_default_str();
   cmd->add_flag("--check", o->check, "exit with status 3 when an acceptance check fails");
   return [o, cmd]() {
     std::string command = "geaware bench";

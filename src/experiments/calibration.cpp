@@ -1,12 +1,16 @@
 #include "geaware/experiments/calibration.hpp"
 
 #include <array>
+#include <optional>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "geaware/ident/fits.hpp"
+#include "geaware/model/ground_effect.hpp"
 #include "geaware/ident/rig_logs.hpp"
 #include "geaware/model/units.hpp"
 
@@ -102,15 +106,34 @@ ControllerCalibration calibrateController(const model::VehicleParams& file_vehic
 
   // The fits, with their default options (the tilt limit aside, see the sweeps).
   const ident::RotorFit rotor = ident::fitRotorStand(stand_log);
-  const ident::AdditionalThrustFit thrust = ident::fitAdditionalThrust(platform);
   const ident::MixingFit mixing = ident::fitMixing(platform, file_vehicle.diagonal_rotor_distance_m);
   const double k_TY = mixing.k_TY_N_per_rpm2 ? mixing.k_TY_N_per_rpm2->value
                                              : file_vehicle.rotor.k_TY_N_per_rpm2;
   ident::LevelingFitOptions lo;
   lo.max_tilt_deg = sweeps.tilt_limit_deg;
-  const ident::LevelingFit leveling = ident::fitLeveling(
-      platform, {thrust.k_T_N_per_rpm2.value, k_TY, file_vehicle.diagonal_rotor_distance_m}, lo);
-  for (const auto* w : {&rotor.warnings, &thrust.warnings, &mixing.warnings, &leveling.warnings}) {
+  const double b = file_vehicle.diagonal_rotor_distance_m;
+  // F_G and M_G in the chosen form; the other form's results stay empty.
+  std::optional<ident::AdditionalThrustFit> thrust;
+  std::optional<ident::LevelingFit> leveling;
+  std::optional<ident::AdditionalThrustTableFit> thrust_table;
+  std::optional<ident::LevelingTableFit> leveling_table;
+  ident::Estimate k_T;
+  if (sweeps.tables) {
+    thrust_table = ident::fitAdditionalThrustTable(platform);
+    k_T = thrust_table->k_T_N_per_rpm2;
+    leveling_table = ident::fitLevelingTable(platform, {k_T.value, k_TY, b}, lo);
+    for (const auto* w : {&thrust_table->warnings, &leveling_table->warnings}) {
+      c.warnings.insert(c.warnings.end(), w->begin(), w->end());
+    }
+  } else {
+    thrust = ident::fitAdditionalThrust(platform);
+    k_T = thrust->k_T_N_per_rpm2;
+    leveling = ident::fitLeveling(platform, {k_T.value, k_TY, b}, lo);
+    for (const auto* w : {&thrust->warnings, &leveling->warnings}) {
+      c.warnings.insert(c.warnings.end(), w->begin(), w->end());
+    }
+  }
+  for (const auto* w : {&rotor.warnings, &mixing.warnings}) {
     c.warnings.insert(c.warnings.end(), w->begin(), w->end());
   }
 
@@ -135,11 +158,29 @@ ControllerCalibration calibrateController(const model::VehicleParams& file_vehic
   set("throttle_curve.c2_rpm2", "rpm²", kStand, v.throttle.c2_rpm2, rotor.c2_rpm2);
   set("throttle_curve.c1_rpm2", "rpm²", kStand, v.throttle.c1_rpm2, rotor.c1_rpm2);
   set("throttle_curve.c0_rpm2", "rpm²", kStand, v.throttle.c0_rpm2, rotor.c0_rpm2);
-  set("rotor.k_T_N_per_rpm2", "N/rpm²", kLevel, v.rotor.k_T_N_per_rpm2, thrust.k_T_N_per_rpm2);
-  set("ground_effect.additional_thrust.g1_m2", "m²", kLevel, v.additional_thrust.g1_m2,
-      thrust.g1_m2);
-  set("ground_effect.additional_thrust.g2_m2", "m²", kLevel, v.additional_thrust.g2_m2,
-      thrust.g2_m2);
+  set("rotor.k_T_N_per_rpm2", "N/rpm²", kLevel, v.rotor.k_T_N_per_rpm2, k_T);
+  // A table: one row per knot, the file's value being the file's curve at that height.
+  const model::GroundEffectModel file_ge(file_vehicle);
+  auto setTable = [&](const std::string& name, const std::string& unit, const std::string& source,
+                      const ident::TableCurve& curve, model::HeightTableParams& field,
+                      bool thrust_curve) {
+    field = {curve.heights_m, {}};
+    for (std::size_t j = 0; j < curve.values.size(); ++j) {
+      const double h = curve.heights_m[j];
+      c.parameters.push_back({fmt::format("{}(h = {:.3g} m)", name, h), unit, source,
+                              thrust_curve ? file_ge.thrustRatio(h) : file_ge.levelingCoefficient(h),
+                              curve.values[j].value, curve.values[j].std_error});
+      field.values.push_back(curve.values[j].value);
+    }
+  };
+  if (thrust) {
+    set("ground_effect.additional_thrust.g1_m2", "m²", kLevel, v.additional_thrust.g1_m2,
+        thrust->g1_m2);
+    set("ground_effect.additional_thrust.g2_m2", "m²", kLevel, v.additional_thrust.g2_m2,
+        thrust->g2_m2);
+  } else {
+    setTable("F_G", "-", kLevel, thrust_table->F_G, v.additional_thrust.table, true);
+  }
   if (mixing.k_TX_N_per_rpm2) {
     set("rotor.k_TX_N_per_rpm2", "N/rpm²", kMix, v.rotor.k_TX_N_per_rpm2, *mixing.k_TX_N_per_rpm2);
   }
@@ -150,11 +191,15 @@ ControllerCalibration calibrateController(const model::VehicleParams& file_vehic
     set("rotor.k_I_Nm_per_rpm2", "N·m/rpm²", kMix, v.rotor.k_I_Nm_per_rpm2,
         *mixing.k_I_Nm_per_rpm2);
   }
-  set("ground_effect.leveling_torque.g3_m", "m", kTilt, v.leveling_torque.g3_m, leveling.g3_m);
-  set("ground_effect.leveling_torque.g4_m2", "m²", kTilt, v.leveling_torque.g4_m2,
-      leveling.g4_m2);
-  set("ground_effect.leveling_torque.scale_m4", "m⁴", kTilt, v.leveling_torque.scale_m4,
-      leveling.scale_m4);
+  if (leveling) {
+    set("ground_effect.leveling_torque.g3_m", "m", kTilt, v.leveling_torque.g3_m, leveling->g3_m);
+    set("ground_effect.leveling_torque.g4_m2", "m²", kTilt, v.leveling_torque.g4_m2,
+        leveling->g4_m2);
+    set("ground_effect.leveling_torque.scale_m4", "m⁴", kTilt, v.leveling_torque.scale_m4,
+        leveling->scale_m4);
+  } else {
+    setTable("M_G", "m", kTilt, leveling_table->M_G, v.leveling_torque.table, false);
+  }
   v.name = file_vehicle.name + " (identified on the virtual rigs)";
   if (const auto errors = v.validate(); !errors.empty()) {
     std::string what = "calibration: the identified parameters are not a valid vehicle:";
@@ -174,22 +219,26 @@ ControllerCalibration calibrateController(const model::VehicleParams& file_vehic
   const double n = c.torque_rpm;
   const std::array<double, 4> speeds{n, n, n, n};
   const double sin_d = std::sin(c.torque_tilt_deg * model::kDegToRad);
-  auto fg = [](const model::VehicleParams& p, double h) {
-    return p.additional_thrust.g2_m2 / (h * h + p.additional_thrust.g1_m2);
+  // The curves as the controller's model evaluates them, without its clamp at the landing
+  // gear (the rigs go lower than the vehicle flies).
+  auto unclamped = [](model::VehicleParams p) {
+    p.min_rotor_plane_height_m = 0.0;
+    return model::GroundEffectModel(p);
   };
-  auto torque = [&](const model::VehicleParams& p, double h) {
+  const model::GroundEffectModel ge_fit = unclamped(v);
+  const model::GroundEffectModel ge_file = unclamped(file_vehicle);
+  auto torque = [&](const model::GroundEffectModel& ge, const model::VehicleParams& p, double h) {
     const double T = 4.0 * p.rotor.k_T_N_per_rpm2 * n * n;
-    return -ident::levelingCoefficient(p.leveling_torque.g3_m, p.leveling_torque.g4_m2,
-                                       p.leveling_torque.scale_m4, h) *
-           T * sin_d;
+    return -ge.levelingCoefficient(h) * T * sin_d;
   };
   for (double h : grid(0.07, 1.0, 0.01)) {
     const double truth_fg = clean.wrench(h, 0.0, speeds).wrench.force_B.z() / (k_sum * n * n) - 1.0;
-    c.thrust_ratio.push_back({h, truth_fg, fg(v, h), fg(file_vehicle, h)});
+    c.thrust_ratio.push_back({h, truth_fg, ge_fit.thrustRatio(h), ge_file.thrustRatio(h)});
   }
   for (double h : grid(0.08, 0.5, 0.01)) {
     const double truth_tau = clean.wrench(h, c.torque_tilt_deg, speeds).wrench.torque_B.y();
-    c.leveling_torque.push_back({h, truth_tau, torque(v, h), torque(file_vehicle, h)});
+    c.leveling_torque.push_back(
+        {h, truth_tau, torque(ge_fit, v, h), torque(ge_file, file_vehicle, h)});
   }
   return c;
 }

@@ -81,6 +81,15 @@ void vehicleLines(std::string& k, const std::string& p, const model::VehiclePara
                    num(v.additional_thrust.g2_m2));
   k += fmt::format("{}.leveling_torque = {} {} {}\n", p, num(v.leveling_torque.g3_m),
                    num(v.leveling_torque.g4_m2), num(v.leveling_torque.scale_m4));
+  // Tables replace the formulas above when given.
+  for (const auto* t : {&v.additional_thrust.table, &v.leveling_torque.table}) {
+    if (t->empty()) continue;
+    k += p + (t == &v.additional_thrust.table ? ".additional_thrust.table =" : ".leveling_torque.table =");
+    for (std::size_t i = 0; i < t->heights_m.size(); ++i) {
+      k += fmt::format(" ({} {})", num(t->heights_m[i]), num(t->values[i]));
+    }
+    k += "\n";
+  }
   k += p + ".drag =";
   for (std::size_t i = 0; i < v.drag.heights_m.size(); ++i) {
     k += fmt::format(" ({} {} {})", num(v.drag.heights_m[i]), num(v.drag.d_x_N_per_mps[i]),

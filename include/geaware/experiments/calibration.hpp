@@ -38,6 +38,9 @@ struct CalibrationSweeps {
   /// FACTS.md) [deg].
   double tilt_limit_deg = 10.0;
   std::uint64_t seed = 1;  ///< rig noise; each rig draws from its own derived seed
+  /// Identify F_G and M_G as tables at the swept heights (ident/table_fit.hpp) instead of the
+  /// paper's closed forms; F_G's knots go up to 0.5 m, the level heights above fix k_T.
+  bool tables = false;
 
   /// The campaign's sweeps (see the file comment).
   [[nodiscard]] static CalibrationSweeps defaults();
