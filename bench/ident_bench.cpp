@@ -89,6 +89,27 @@ void BM_IdentifyPlatform(benchmark::State& state) {
 }
 BENCHMARK(BM_IdentifyPlatform)->Unit(benchmark::kMillisecond)->Iterations(3);
 
+/// The same with both curves as tables (`--ground-effect table`): sparse robust linear fits
+/// over the knots (the synthetic log's distinct heights up to 0.5 m for F_G, every tilted height
+/// for M_G) instead of the closed forms' Ceres fits.
+void BM_IdentifyPlatformTables(benchmark::State& state) {
+  const auto& file = platformCsv();
+  const auto& p = vehicle();
+  std::size_t knots = 0;
+  for (auto _ : state) {
+    const auto log = geaware::ident::readPlatformLog(file);
+    const auto thrust = geaware::ident::fitAdditionalThrustTable(log);
+    const auto mixing = geaware::ident::fitMixing(log, p.diagonal_rotor_distance_m);
+    const auto leveling = geaware::ident::fitLevelingTable(
+        log, {thrust.k_T_N_per_rpm2.value, mixing.k_TY_N_per_rpm2->value, p.diagonal_rotor_distance_m});
+    knots = thrust.F_G.heights_m.size() + leveling.M_G.heights_m.size();
+    benchmark::DoNotOptimize(leveling.M_G.values.data());
+  }
+  state.counters["knots"] = static_cast<double>(knots);
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kSamples));
+}
+BENCHMARK(BM_IdentifyPlatformTables)->Unit(benchmark::kMillisecond)->Iterations(3);
+
 /// The supplementary correlation table (11 rank transforms of up to 10⁶ samples).
 void BM_PlatformCorrelations(benchmark::State& state) {
   const auto log = geaware::ident::readPlatformLog(platformCsv());
