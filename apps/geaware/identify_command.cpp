@@ -136,20 +136,6 @@ std::vector<double> values(const ident::TableCurve& c) {
   return v;
 }
 
-/// One parameter row per knot of a fitted table, "F_G(h = 0.07 m)".
-void addTableParams(Outcome& o, const std::string& name, const ident::TableCurve& c,
-                    const std::string& unit) {
-  for (std::size_t j = 0; j < c.values.size(); ++j) {
-    o.params.push_back({fmt::format("{}(h = {:.4g} m)", name, c.heights_m[j]), c.values[j], unit});
-  }
-}
-
-void setTable(ident::VehicleUpdate& u, const std::string& section, const ident::TableCurve& c) {
-  std::vector<double> errors;
-  for (const auto& e : c.values) errors.push_back(e.std_error);
-  u.setTable(section, c.heights_m, values(c), errors);
-}
-
 /// {"heights_m": [...], "<values_key>": [...], "std_error": [...], "samples": [...]}
 std::string tableJson(const ident::TableCurve& c, const std::string& values_key) {
   std::string h;
@@ -165,6 +151,30 @@ std::string tableJson(const ident::TableCurve& c, const std::string& values_key)
   }
   return fmt::format("{{\"heights_m\":[{}],{}:[{}],\"std_error\":[{}],\"samples\":[{}]}}", h,
                      jsonString(values_key), v, e, n);
+}
+
+/// How one curve's table is named: "F_G" with unit "-" in section ground_effect.additional_thrust
+/// (values key "F_G"), or "M_G", "m", leveling_torque, "M_G_m".
+struct TableNames {
+  std::string curve;
+  std::string unit;
+  std::string section;     ///< below ground_effect
+  std::string values_key;  ///< in the vehicle file
+};
+
+/// A fitted table into the outcome: one parameter row per knot ("F_G(h = 0.07 m)"), the
+/// vehicle-file update with the standard errors, its JSON member appended to `json`. Returns the
+/// curve as the model interpolates it (PCHIP), for the plots.
+std::function<double(double)> takeTable(Outcome& o, const TableNames& n, const ident::TableCurve& c,
+                                        std::string& json) {
+  std::vector<double> errors;
+  for (std::size_t j = 0; j < c.values.size(); ++j) {
+    o.params.push_back({fmt::format("{}(h = {:.4g} m)", n.curve, c.heights_m[j]), c.values[j], n.unit});
+    errors.push_back(c.values[j].std_error);
+  }
+  o.update.setTable("ground_effect." + n.section, c.heights_m, values(c), errors);
+  json += (json.empty() ? "" : ",") + jsonString(n.section) + ":" + tableJson(c, n.values_key);
+  return [curve = model::HeightTable(c.heights_m, values(c))](double h) { return curve.value(h); };
 }
 
 // ------------------------------------------------------------------------------- the kinds
@@ -253,17 +263,12 @@ Outcome identifyPlatform(const IdentifyOptions& opt, const std::map<std::string,
     const auto fit = ident::fitAdditionalThrustTable(log, po);
     k_T = fit.k_T_N_per_rpm2;
     o.params.push_back({"rotor.k_T_N_per_rpm2", k_T, "N/rpm²"});
-    addTableParams(o, "F_G", fit.F_G, "-");
     o.fits = {{"f_z = k_T·Σn²·(1 + F_G(h))", fit.stats, "N"}};
     o.warnings = fit.warnings;
     o.update.set("rotor.k_T_N_per_rpm2", k_T);
-    setTable(o.update, "ground_effect.additional_thrust", fit.F_G);
-    fitted_F = [curve = model::HeightTable(fit.F_G.heights_m, values(fit.F_G))](double h) {
-      return curve.value(h);
-    };
+    fitted_F = takeTable(o, {"F_G", "-", "additional_thrust", "F_G"}, fit.F_G, tables_json);
     h_min = fit.h_min_m;
     h_max = fit.h_max_m;
-    tables_json += "\"additional_thrust\":" + tableJson(fit.F_G, "F_G");
   } else {
     const auto fit = ident::fitAdditionalThrust(log, po);
     k_T = fit.k_T_N_per_rpm2;
@@ -302,16 +307,11 @@ Outcome identifyPlatform(const IdentifyOptions& opt, const std::map<std::string,
     if (table) {
       if (!opt.table_heights.empty()) lo.table.heights_m = po.thrust_table.heights_m;
       const auto fit = ident::fitLevelingTable(log, in, lo);
-      addTableParams(o, "M_G", fit.M_G, "m");
       o.fits.push_back({"leveling torque", fit.stats, "N·m"});
       o.warnings.insert(o.warnings.end(), fit.warnings.begin(), fit.warnings.end());
-      setTable(o.update, "ground_effect.leveling_torque", fit.M_G);
-      fitted_M = [curve = model::HeightTable(fit.M_G.heights_m, values(fit.M_G))](double h) {
-        return curve.value(h);
-      };
+      fitted_M = takeTable(o, {"M_G", "m", "leveling_torque", "M_G_m"}, fit.M_G, tables_json);
       lev_h_min = fit.h_min_m;
       lev_h_max = fit.h_max_m;
-      tables_json += ",\"leveling_torque\":" + tableJson(fit.M_G, "M_G_m");
     } else {
       const auto fit = ident::fitLeveling(log, in, lo);
       o.params.push_back({"ground_effect.leveling_torque.g3_m", fit.g3_m, "m"});
