@@ -422,9 +422,10 @@ Outcome identifyFlight(const IdentifyOptions& opt, const std::map<std::string, s
     const auto log = ident::readHoverLog(opt.log, c);
     const auto fit = ident::fitHoverAdditionalThrust(log, base.mass_kg, base.rotor.k_T_N_per_rpm2,
                                                      robustOptions(opt.loss));
-    o.params = {{"ground_effect.additional_thrust.g1_m2", fit.g1_m2, "m²"},
+    o.params = {{"rotor.k_T_N_per_rpm2", fit.k_T_N_per_rpm2, "N/rpm²"},
+                {"ground_effect.additional_thrust.g1_m2", fit.g1_m2, "m²"},
                 {"ground_effect.additional_thrust.g2_m2", fit.g2_m2, "m²"}};
-    o.fits = {{"m·a_ext,z = T̃·F_G(h)", fit.stats, "N"}};
+    o.fits = {{"m·a_ext,z + k_T·Σn² = k_T'·Σn²·(1 + F_G(h))", fit.stats, "N"}};
     o.warnings = fit.warnings;
     ident::addHoverThrust(o.update, fit);
     addStatsTable(o, page);
@@ -435,7 +436,9 @@ Outcome identifyFlight(const IdentifyOptions& opt, const std::map<std::string, s
       double S = 0.0;
       for (const auto& n : log.n_rpm) S += n[i] * n[i];
       pts.x.push_back(log.h_m[i]);
-      pts.y.push_back(base.mass_kg * log.a_ext_W[2][i] / (base.rotor.k_T_N_per_rpm2 * S));
+      // F̃_G with the hover's own k_T: (m·a_ext,z + k_T·S)/(k_T'·S) − 1.
+      pts.y.push_back((base.mass_kg * log.a_ext_W[2][i] + base.rotor.k_T_N_per_rpm2 * S) /
+                          (fit.k_T_N_per_rpm2.value * S) - 1.0);
       fitted.x.push_back(log.h_m[i]);
       fitted.y.push_back(fit.g2_m2.value / (log.h_m[i] * log.h_m[i] + fit.g1_m2.value));
     }

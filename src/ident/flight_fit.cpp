@@ -21,73 +21,32 @@ HoverThrustFit fitHoverAdditionalThrust(const FlightLog& log, double mass_kg, do
   }
   const std::size_t n = log.size();
   if (log.a_ext_W[2].size() != n) throw std::invalid_argument("fitHoverAdditionalThrust: no az_ext");
-  // Per sample: T̃ = k_T·Σn², h², and the external z force m·a_ext,z.
-  std::vector<double> T(n);
+  // Per sample: S = Σn², h², and the total z force m·a_ext,z + k_T·S, which the observer split
+  // into the thrust it assumed (k_T·S) and the rest. Fitting it as k_T'·S·(1 + F_G(h)) gives
+  // the hover's own k_T' along with g1, g2 (paper eq. 10 takes k_T as given: k_T' = k_T).
+  std::vector<double> S(n);
   std::vector<double> h2(n);
   std::vector<double> f(n);
   out.h_min_m = std::numeric_limits<double>::infinity();
   out.h_max_m = -std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < n; ++i) {
-    double S = 0.0;
-    for (const auto& c : log.n_rpm) S += c[i] * c[i];
-    T[i] = k_T * S;
+    S[i] = 0.0;
+    for (const auto& c : log.n_rpm) S[i] += c[i] * c[i];
     h2[i] = log.h_m[i] * log.h_m[i];
-    f[i] = mass_kg * log.a_ext_W[2][i];
+    f[i] = mass_kg * log.a_ext_W[2][i] + k_T * S[i];
     out.h_min_m = std::min(out.h_min_m, log.h_m[i]);
     out.h_max_m = std::max(out.h_max_m, log.h_m[i]);
   }
-  // Initial guess: for fixed g1 the model is linear in g2; scan g1 on a log grid.
-  const std::size_t stride = std::max<std::size_t>(1, n / 20000);
-  double best = std::numeric_limits<double>::infinity();
-  Eigen::Vector2d x0(0.02, 0.0);
-  for (int k = 0; k <= 60; ++k) {
-    const double g1 = 1e-4 * std::pow(10.0, k / 12.0);
-    double sxx = 0.0;
-    double sxy = 0.0;
-    double syy = 0.0;
-    for (std::size_t i = 0; i < n; i += stride) {
-      const double x = T[i] / (h2[i] + g1);
-      sxx += x * x;
-      sxy += x * f[i];
-      syy += f[i] * f[i];
-    }
-    if (!(sxx > 0.0)) continue;
-    const double g2 = sxy / sxx;
-    const double sse = syy - g2 * sxy;
-    if (g2 > 0.0 && sse < best) {
-      best = sse;
-      x0 = Eigen::Vector2d(g1, g2);
-    }
-  }
-  if (!(x0(1) > 0.0)) {
-    throw IdentError(log.source + ": cannot fit F_G from the hover log: the external z force "
-                                  "never rises towards the ground (heights " +
-                     num(out.h_min_m) + "–" + num(out.h_max_m) + " m)");
-  }
-  NonlinearProblem problem;
-  problem.samples = n;
-  problem.parameters = 2;
-  problem.residual = [&](std::size_t i, const double* x, double& r, double* g) {
-    if (!(x[0] > 0.0)) return false;
-    const double d = h2[i] + x[0];
-    r = f[i] - T[i] * x[1] / d;
-    if (g != nullptr) {
-      g[0] = T[i] * x[1] / (d * d);
-      g[1] = -T[i] / d;
-    }
-    return true;
-  };
-  problem.scales = {std::max(x0(0), 1e-4), x0(1)};
-  problem.lower = {1e-9, 0.0};
-  problem.upper = {100.0, 100.0};
-  const auto fit = fitNonlinear(problem, x0, robust);
-  detail::require(fit, log.source, "g1, g2 of F_G(h) = g2/(h² + g1) from the hover descent");
-  out.g1_m2 = fit.estimate(0);
-  out.g2_m2 = fit.estimate(1);
+  const auto fit = detail::fitThrustWithGroundEffect(
+      S, h2, f, robust, log.source, "k_T, g1, g2 of F_G(h) = g2/(h² + g1) from the hover descent");
+  out.k_T_N_per_rpm2 = fit.estimate(0);
+  out.g1_m2 = fit.estimate(1);
+  out.g2_m2 = fit.estimate(2);
   out.covariance = fit.covariance;
   out.stats = fit.stats;
   const std::string hint = "heights " + num(out.h_min_m) + "–" + num(out.h_max_m) +
                            " m; descend from out of ground effect to the lowest height";
+  detail::warnIfImprecise(out.warnings, "k_T", out.k_T_N_per_rpm2, hint);
   detail::warnIfImprecise(out.warnings, "g1", out.g1_m2, hint);
   detail::warnIfImprecise(out.warnings, "g2", out.g2_m2, hint);
   detail::warnIfManyOutliers(out.warnings, "hover F_G fit", out.stats);

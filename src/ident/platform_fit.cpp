@@ -59,6 +59,67 @@ double additionalThrustStdError(const AdditionalThrustFit& fit, double h) {
   return std::sqrt(grad.dot(fit.covariance * grad));
 }
 
+namespace detail {
+
+LeastSquaresFit fitThrustWithGroundEffect(const std::vector<double>& S,
+                                          const std::vector<double>& h2,
+                                          const std::vector<double>& fz,
+                                          const RobustOptions& robust, const std::string& source,
+                                          const std::string& what) {
+  // Initial guess by variable projection: for a fixed g1 the model is linear in k_T and
+  // k_T·g2, so scan g1 on a log grid (on at most ~20,000 samples) and keep the best.
+  const std::size_t stride = std::max<std::size_t>(1, S.size() / 20000);
+  double best_sse = std::numeric_limits<double>::infinity();
+  Eigen::Vector3d x0(0.0, 0.02, 0.0);
+  for (int k = 0; k <= 60; ++k) {
+    const double g1 = 1e-4 * std::pow(10.0, k / 12.0);  // 1e-4 … 10 m²
+    Eigen::Matrix2d A = Eigen::Matrix2d::Zero();
+    Eigen::Vector2d b = Eigen::Vector2d::Zero();
+    double yy = 0.0;
+    for (std::size_t j = 0; j < S.size(); j += stride) {
+      const Eigen::Vector2d x(S[j], S[j] / (h2[j] + g1));
+      A += x * x.transpose();
+      b += x * fz[j];
+      yy += fz[j] * fz[j];
+    }
+    if (!(A.determinant() > 1e-12 * A(0, 0) * A(1, 1))) continue;
+    const Eigen::Vector2d beta = A.ldlt().solve(b);
+    const double sse = yy - beta.dot(b);
+    if (sse < best_sse && beta(0) > 0.0) {
+      best_sse = sse;
+      x0 = Eigen::Vector3d(beta(0), g1, std::max(beta(1) / beta(0), 1e-6));
+    }
+  }
+  if (!(x0(0) > 0.0)) {
+    throw IdentError(source + ": cannot fit F_G: the thrust does not grow with Σn² "
+                                  "(are the rotor speeds or the force columns right?)");
+  }
+
+  NonlinearProblem problem;
+  problem.samples = S.size();
+  problem.parameters = 3;
+  problem.residual = [&](std::size_t j, const double* x, double& r, double* g) {
+    if (!(x[1] > 0.0)) return false;
+    const double d = h2[j] + x[1];
+    const double F = x[2] / d;
+    r = fz[j] - x[0] * S[j] * (1.0 + F);
+    if (g != nullptr) {
+      g[0] = -S[j] * (1.0 + F);
+      g[1] = x[0] * S[j] * x[2] / (d * d);
+      g[2] = -x[0] * S[j] / d;
+    }
+    return true;
+  };
+  problem.scales = {x0(0), std::max(x0(1), 1e-4), std::max(x0(2), 1e-4)};
+  problem.lower = {0.0, 1e-9, 0.0};
+  problem.upper = {std::numeric_limits<double>::infinity(), 100.0, 100.0};
+  const auto fit = fitNonlinear(problem, x0, robust);
+  detail::require(fit, source, what);
+  return fit;
+}
+
+}  // namespace detail
+
 AdditionalThrustFit fitAdditionalThrust(const PlatformLog& log, const PlatformFitOptions& options) {
   AdditionalThrustFit out;
   const std::vector<std::size_t> idx = levelSamples(log, options.level_tilt_deg);
@@ -82,55 +143,8 @@ AdditionalThrustFit fitAdditionalThrust(const PlatformLog& log, const PlatformFi
     out.h_max_m = std::max(out.h_max_m, log.h_m[i]);
   }
 
-  // Initial guess by variable projection: for a fixed g1 the model is linear in k_T and
-  // k_T·g2, so scan g1 on a log grid (on at most ~20,000 samples) and keep the best.
-  const std::size_t stride = std::max<std::size_t>(1, idx.size() / 20000);
-  double best_sse = std::numeric_limits<double>::infinity();
-  Eigen::Vector3d x0(0.0, 0.02, 0.0);
-  for (int k = 0; k <= 60; ++k) {
-    const double g1 = 1e-4 * std::pow(10.0, k / 12.0);  // 1e-4 … 10 m²
-    Eigen::Matrix2d A = Eigen::Matrix2d::Zero();
-    Eigen::Vector2d b = Eigen::Vector2d::Zero();
-    double yy = 0.0;
-    for (std::size_t j = 0; j < idx.size(); j += stride) {
-      const Eigen::Vector2d x(S[j], S[j] / (h2[j] + g1));
-      A += x * x.transpose();
-      b += x * fz[j];
-      yy += fz[j] * fz[j];
-    }
-    if (!(A.determinant() > 1e-12 * A(0, 0) * A(1, 1))) continue;
-    const Eigen::Vector2d beta = A.ldlt().solve(b);
-    const double sse = yy - beta.dot(b);
-    if (sse < best_sse && beta(0) > 0.0) {
-      best_sse = sse;
-      x0 = Eigen::Vector3d(beta(0), g1, std::max(beta(1) / beta(0), 1e-6));
-    }
-  }
-  if (!(x0(0) > 0.0)) {
-    throw IdentError(log.source + ": cannot fit F_G: the thrust does not grow with Σn² "
-                                  "(are the rotor speeds or the force columns right?)");
-  }
-
-  NonlinearProblem problem;
-  problem.samples = idx.size();
-  problem.parameters = 3;
-  problem.residual = [&](std::size_t j, const double* x, double& r, double* g) {
-    if (!(x[1] > 0.0)) return false;
-    const double d = h2[j] + x[1];
-    const double F = x[2] / d;
-    r = fz[j] - x[0] * S[j] * (1.0 + F);
-    if (g != nullptr) {
-      g[0] = -S[j] * (1.0 + F);
-      g[1] = x[0] * S[j] * x[2] / (d * d);
-      g[2] = -x[0] * S[j] / d;
-    }
-    return true;
-  };
-  problem.scales = {x0(0), std::max(x0(1), 1e-4), std::max(x0(2), 1e-4)};
-  problem.lower = {0.0, 1e-9, 0.0};
-  problem.upper = {std::numeric_limits<double>::infinity(), 100.0, 100.0};
-  const auto fit = fitNonlinear(problem, x0, options.robust);
-  detail::require(fit, log.source, "k_T, g1, g2 (F_G(h) = g2/(h² + g1) on the level board)");
+  const LeastSquaresFit fit = detail::fitThrustWithGroundEffect(
+      S, h2, fz, options.robust, log.source, "k_T, g1, g2 (F_G(h) = g2/(h² + g1) on the level board)");
   out.k_T_N_per_rpm2 = fit.estimate(0);
   out.g1_m2 = fit.estimate(1);
   out.g2_m2 = fit.estimate(2);

@@ -564,6 +564,7 @@ void addLeveling(VehicleUpdate& u, const LevelingFit& f) {
 }
 
 void addHoverThrust(VehicleUpdate& u, const HoverThrustFit& f) {
+  u.set("rotor.k_T_N_per_rpm2", f.k_T_N_per_rpm2);
   u.set("ground_effect.additional_thrust.g1_m2", f.g1_m2);
   u.set("ground_effect.additional_thrust.g2_m2", f.g2_m2);
 }

@@ -15,7 +15,8 @@ using ident_test::withinSigmas;
 
 /// Hover descent from 1.5 m to 0.075 m: speeds hold m·g = T·(1 + F_G(h)); the observer's
 /// external acceleration is F_G·T/m plus noise.
-geaware::ident::FlightLog hoverDescent(std::uint64_t seed) {
+/// `observer_k_T_scale`: the observer's k_T relative to the truth's (1: right).
+geaware::ident::FlightLog hoverDescent(std::uint64_t seed, double observer_k_T_scale = 1.0) {
   const auto& p = geaware_test::paperParams();
   const geaware::model::GroundEffectModel ge(p);
   std::mt19937_64 rng(seed);
@@ -29,7 +30,9 @@ geaware::ident::FlightLog hoverDescent(std::uint64_t seed) {
     const double rpm = std::sqrt(T / (4.0 * p.rotor.k_T_N_per_rpm2));
     log.t_s.push_back(0.005 * i);
     log.h_m.push_back(h);
-    log.a_ext_W[2].push_back(ge.thrustRatio(h) * T / p.mass_kg + 0.05 * noise(rng));
+    // The observer explains k_T,obs·Σn² = observer_k_T_scale·T of the total T·(1 + F_G).
+    log.a_ext_W[2].push_back((T * (1.0 + ge.thrustRatio(h)) - observer_k_T_scale * T) / p.mass_kg +
+                             0.05 * noise(rng));
     for (auto& c : log.n_rpm) c.push_back(rpm);
   }
   return log;
@@ -41,10 +44,24 @@ TEST(FlightFit, HoverDescentRecoversFG) {
     SCOPED_TRACE(seed);
     const auto fit = geaware::ident::fitHoverAdditionalThrust(hoverDescent(seed), p.mass_kg,
                                                               p.rotor.k_T_N_per_rpm2);
+    EXPECT_TRUE(withinSigmas(fit.k_T_N_per_rpm2, p.rotor.k_T_N_per_rpm2));
     EXPECT_TRUE(withinSigmas(fit.g1_m2, p.additional_thrust.g1_m2));
     EXPECT_TRUE(withinSigmas(fit.g2_m2, p.additional_thrust.g2_m2));
     EXPECT_NEAR(fit.stats.residual_rms, 0.05 * p.mass_kg, 0.01 * p.mass_kg);
   }
+}
+
+TEST(FlightFit, HoverDescentFindsTheTrueKTWhenTheObserversIsOff) {
+  // The observer ran with a k_T 3 % too high: it attributes 3 % too much to the rotors and its
+  // a_ext is 3 % of T short everywhere. The fit gives the true k_T and the true F_G, where the
+  // paper's eq. 10 with the observer's k_T would put F_G 3 % too low at every height.
+  const auto& p = geaware_test::paperParams();
+  const auto fit = geaware::ident::fitHoverAdditionalThrust(hoverDescent(4, 1.03), p.mass_kg,
+                                                            1.03 * p.rotor.k_T_N_per_rpm2);
+  EXPECT_TRUE(withinSigmas(fit.k_T_N_per_rpm2, p.rotor.k_T_N_per_rpm2));
+  EXPECT_LT(fit.k_T_N_per_rpm2.std_error, 1e-3 * p.rotor.k_T_N_per_rpm2);
+  EXPECT_TRUE(withinSigmas(fit.g1_m2, p.additional_thrust.g1_m2));
+  EXPECT_TRUE(withinSigmas(fit.g2_m2, p.additional_thrust.g2_m2));
 }
 
 /// Flights at four heights with random velocities and attitudes; the external acceleration is

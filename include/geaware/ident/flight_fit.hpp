@@ -1,10 +1,11 @@
 #pragma once
 // Identification from flight logs (formats in ident/rig_logs.hpp):
 //
-//  - F_G from a hover descent (paper eq. 10): F̃_G = m·z_Wᵀã_ext/T̃ with T̃ = k_T·Σn², i.e.
-//    m·a_ext,z = T̃·g2/(h² + g1); g1 and g2 with Ceres and a robust loss (k_T given: the
-//    external-acceleration observer was computed with it). Assumes a near-level attitude
-//    (z_Wᵀz_B ≈ 1), as in a hover.
+//  - F_G and k_T from a hover descent (paper eq. 10): F̃_G = m·z_Wᵀã_ext/T̃ with T̃ = k_T·Σn²,
+//    where the external-acceleration observer used the vehicle's k_T. The total z force
+//    m·a_ext,z + k_T·Σn² is fitted as k_T'·Σn²·(1 + g2/(h² + g1)), with Ceres and a robust loss:
+//    k_T' is the hover's own k_T (it equals k_T when the observer's k_T was right), fixed by the
+//    heights out of ground effect. Assumes a near-level attitude (z_Wᵀz_B ≈ 1), as in a hover.
 //  - the drag table D(h) (paper eq. 20): in the body frame the in-plane external force is the
 //    rotor drag, m·x_Bᵀã_ext = −d_x·x_Bᵀv and m·y_Bᵀã_ext = −d_y·y_Bᵀv (f_G is along z_B and
 //    does not enter); per height band, linear least squares gives d_x(h) and d_y(h).
@@ -21,16 +22,18 @@
 namespace geaware::ident {
 
 struct HoverThrustFit {
+  Estimate k_T_N_per_rpm2;  ///< k_T in hover
   Estimate g1_m2;
   Estimate g2_m2;
-  Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();  ///< of (g1, g2)
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< of (k_T, g1, g2)
   FitStats stats;                                        ///< residuals in N
   double h_min_m = kNaN;
   double h_max_m = kNaN;
   std::vector<std::string> warnings;
 };
 
-/// Throws IdentError when the log cannot constrain g1 and g2.
+/// k_T_N_per_rpm2: the k_T the log's external acceleration was computed with. Throws
+/// IdentError when the log cannot constrain k_T, g1 and g2.
 [[nodiscard]] HoverThrustFit fitHoverAdditionalThrust(const FlightLog& log, double mass_kg,
                                                       double k_T_N_per_rpm2,
                                                       const RobustOptions& robust = {});
