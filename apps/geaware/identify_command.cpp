@@ -125,6 +125,18 @@ report::Series series(std::string name, std::string mode, std::string dash) {
   return s;
 }
 
+/// `f` sampled at 401 heights over [from, to] m, as a line.
+report::Series curve(std::string name, const std::function<double(double)>& f, double from,
+                     double to, std::string dash = "") {
+  report::Series c = series(std::move(name), "lines", std::move(dash));
+  for (int k = 0; k <= 400; ++k) {
+    const double h = from + (to - from) * k / 400.0;
+    c.x.push_back(h);
+    c.y.push_back(f(h));
+  }
+  return c;
+}
+
 /// Every k-th index so that at most `max_points` are plotted.
 std::size_t plotStride(std::size_t n, std::size_t max_points = 4000) {
   return std::max<std::size_t>(1, n / max_points);
@@ -367,16 +379,9 @@ Outcome identifyPlatform(const IdentifyOptions& opt, const std::map<std::string,
     pts.x.push_back(log.h_m[i]);
     pts.y.push_back(F[i]);
   }
-  report::Series fitted = series(table ? "fit, table (PCHIP)" : "fit g2/(h² + g1)", "lines", "");
-  report::Series prior = series("base vehicle", "lines", "dash");
-  for (int k = 0; k <= 400; ++k) {
-    const double h = h_min + (h_max - h_min) * k / 400.0;
-    fitted.x.push_back(h);
-    fitted.y.push_back(fitted_F(h));
-    prior.x.push_back(h);
-    prior.y.push_back(base_ge.thrustRatio(h));
-  }
-  fg.series = {pts, fitted, prior};
+  fg.series = {pts, curve(table ? "fit, table (PCHIP)" : "fit g2/(h² + g1)", fitted_F, h_min, h_max),
+               curve("base vehicle", [&](double h) { return base_ge.thrustRatio(h); }, h_min, h_max,
+                     "dash")};
   page.addPlot(fg);
   if (fitted_M) {
     report::Plot mg{"Leveling coefficient M_G(h) (tilted board)", "h [m]", "M_G [m]", {}};
@@ -393,16 +398,9 @@ Outcome identifyPlatform(const IdentifyOptions& opt, const std::map<std::string,
       mp.x.push_back(log.h_m[i]);
       mp.y.push_back(-tau_G / (T * std::sin(log.tilt_deg[i] * model::kDegToRad)));
     }
-    report::Series mf = series(table ? "fit, table (PCHIP)" : "fit", "lines", "");
-    report::Series mb = series("base vehicle", "lines", "dash");
-    for (int k = 0; k <= 400; ++k) {
-      const double h = lev_h_min + (lev_h_max - lev_h_min) * k / 400.0;
-      mf.x.push_back(h);
-      mf.y.push_back(fitted_M(h));
-      mb.x.push_back(h);
-      mb.y.push_back(base_ge.levelingCoefficient(h));
-    }
-    mg.series = {mp, mf, mb};
+    mg.series = {mp, curve(table ? "fit, table (PCHIP)" : "fit", fitted_M, lev_h_min, lev_h_max),
+                 curve("base vehicle", [&](double h) { return base_ge.levelingCoefficient(h); },
+                       lev_h_min, lev_h_max, "dash")};
     page.addPlot(mg);
   }
   return o;
@@ -427,7 +425,7 @@ Outcome identifyFlight(const IdentifyOptions& opt, const std::map<std::string, s
                 {"ground_effect.additional_thrust.g2_m2", fit.g2_m2, "m²"}};
     o.fits = {{"m·a_ext,z + k_T·Σn² = k_T'·Σn²·(1 + F_G(h))", fit.stats, "N"}};
     o.warnings = fit.warnings;
-    ident::addHoverThrust(o.update, fit);
+    ident::addAdditionalThrust(o.update, fit);  // k_T in hover goes with its g1, g2
     addStatsTable(o, page);
     report::Plot fg{"F_G from the hover descent (eq. 10)", "h [m]", "F_G [-]", {}};
     report::Series pts = series("m·a_ext,z/T̃", "markers", "");

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "geaware/ident/least_squares.hpp"
+#include "geaware/ident/platform_fit.hpp"
 #include "geaware/ident/table_fit.hpp"
 
 namespace geaware::ident::detail {
@@ -60,14 +61,15 @@ inline void warnSparseKnots(std::vector<std::string>& warnings, const std::strin
   }
 }
 
-/// The joint fit of (k_T, g1, g2) in f_z = k_T·S·(1 + g2/(h² + g1)) for per-sample S = Σn², h²
+/// The joint fit of (k_T, g1, g2) in f_z = k_T·S·(1 + g2/(h² + g1)) for per-sample S = Σn², h
 /// and f_z [N] (robust, Ceres, from a variable-projection initial guess): the level board's
-/// f̃_z, or a hover's m·a_z + k_T,observer·S. Throws IdentError naming `source` and `what`.
-LeastSquaresFit fitThrustWithGroundEffect(const std::vector<double>& S,
-                                          const std::vector<double>& h2,
-                                          const std::vector<double>& fz,
-                                          const RobustOptions& robust, const std::string& source,
-                                          const std::string& what);
+/// f̃_z, or a hover's m·a_z + k_T,observer·S. Fills everything but the warnings. Throws
+/// IdentError naming `source` and `what`.
+AdditionalThrustFit fitThrustWithGroundEffect(const std::vector<double>& S,
+                                              const std::vector<double>& h,
+                                              const std::vector<double>& fz,
+                                              const RobustOptions& robust,
+                                              const std::string& source, const std::string& what);
 
 /// The fit, or an IdentError naming the log and what was being fitted.
 inline const LeastSquaresFit& require(const LeastSquaresFit& fit, const std::string& source,

@@ -13,37 +13,24 @@ namespace geaware::ident {
 
 using detail::num;
 
-HoverThrustFit fitHoverAdditionalThrust(const FlightLog& log, double mass_kg, double k_T,
-                                        const RobustOptions& robust) {
-  HoverThrustFit out;
+AdditionalThrustFit fitHoverAdditionalThrust(const FlightLog& log, double mass_kg, double k_T,
+                                             const RobustOptions& robust) {
   if (!(mass_kg > 0.0) || !(k_T > 0.0)) {
     throw std::invalid_argument("fitHoverAdditionalThrust: mass and k_T must be positive");
   }
   const std::size_t n = log.size();
   if (log.a_ext_W[2].size() != n) throw std::invalid_argument("fitHoverAdditionalThrust: no az_ext");
-  // Per sample: S = Σn², h², and the total z force m·a_ext,z + k_T·S, which the observer split
-  // into the thrust it assumed (k_T·S) and the rest. Fitting it as k_T'·S·(1 + F_G(h)) gives
-  // the hover's own k_T' along with g1, g2 (paper eq. 10 takes k_T as given: k_T' = k_T).
-  std::vector<double> S(n);
-  std::vector<double> h2(n);
+  // Per sample: S = Σn² and the total z force m·a_ext,z + k_T·S, which the observer split into
+  // the thrust it assumed (k_T·S) and the rest. Fitting it as k_T'·S·(1 + F_G(h)) gives the
+  // hover's own k_T' along with g1, g2 (paper eq. 10 takes k_T as given: k_T' = k_T).
+  std::vector<double> S(n, 0.0);
   std::vector<double> f(n);
-  out.h_min_m = std::numeric_limits<double>::infinity();
-  out.h_max_m = -std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < n; ++i) {
-    S[i] = 0.0;
     for (const auto& c : log.n_rpm) S[i] += c[i] * c[i];
-    h2[i] = log.h_m[i] * log.h_m[i];
     f[i] = mass_kg * log.a_ext_W[2][i] + k_T * S[i];
-    out.h_min_m = std::min(out.h_min_m, log.h_m[i]);
-    out.h_max_m = std::max(out.h_max_m, log.h_m[i]);
   }
-  const auto fit = detail::fitThrustWithGroundEffect(
-      S, h2, f, robust, log.source, "k_T, g1, g2 of F_G(h) = g2/(h² + g1) from the hover descent");
-  out.k_T_N_per_rpm2 = fit.estimate(0);
-  out.g1_m2 = fit.estimate(1);
-  out.g2_m2 = fit.estimate(2);
-  out.covariance = fit.covariance;
-  out.stats = fit.stats;
+  AdditionalThrustFit out = detail::fitThrustWithGroundEffect(
+      S, log.h_m, f, robust, log.source, "k_T, g1, g2 of F_G(h) = g2/(h² + g1) from the hover descent");
   const std::string hint = "heights " + num(out.h_min_m) + "–" + num(out.h_max_m) +
                            " m; descend from out of ground effect to the lowest height";
   detail::warnIfImprecise(out.warnings, "k_T", out.k_T_N_per_rpm2, hint);

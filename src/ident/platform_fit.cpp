@@ -61,11 +61,16 @@ double additionalThrustStdError(const AdditionalThrustFit& fit, double h) {
 
 namespace detail {
 
-LeastSquaresFit fitThrustWithGroundEffect(const std::vector<double>& S,
-                                          const std::vector<double>& h2,
-                                          const std::vector<double>& fz,
-                                          const RobustOptions& robust, const std::string& source,
-                                          const std::string& what) {
+AdditionalThrustFit fitThrustWithGroundEffect(const std::vector<double>& S,
+                                              const std::vector<double>& h,
+                                              const std::vector<double>& fz,
+                                              const RobustOptions& robust,
+                                              const std::string& source, const std::string& what) {
+  AdditionalThrustFit out;
+  out.h_min_m = *std::min_element(h.begin(), h.end());
+  out.h_max_m = *std::max_element(h.begin(), h.end());
+  std::vector<double> h2(h.size());
+  for (std::size_t j = 0; j < h.size(); ++j) h2[j] = h[j] * h[j];
   // Initial guess by variable projection: for a fixed g1 the model is linear in k_T and
   // k_T·g2, so scan g1 on a log grid (on at most ~20,000 samples) and keep the best.
   const std::size_t stride = std::max<std::size_t>(1, S.size() / 20000);
@@ -115,41 +120,34 @@ LeastSquaresFit fitThrustWithGroundEffect(const std::vector<double>& S,
   problem.upper = {std::numeric_limits<double>::infinity(), 100.0, 100.0};
   const auto fit = fitNonlinear(problem, x0, robust);
   detail::require(fit, source, what);
-  return fit;
+  out.k_T_N_per_rpm2 = fit.estimate(0);
+  out.g1_m2 = fit.estimate(1);
+  out.g2_m2 = fit.estimate(2);
+  out.covariance = fit.covariance;
+  out.stats = fit.stats;
+  return out;
 }
 
 }  // namespace detail
 
 AdditionalThrustFit fitAdditionalThrust(const PlatformLog& log, const PlatformFitOptions& options) {
-  AdditionalThrustFit out;
   const std::vector<std::size_t> idx = levelSamples(log, options.level_tilt_deg);
   if (idx.size() < 10) {
     throw IdentError(log.source + ": cannot fit F_G: only " + std::to_string(idx.size()) +
                      " samples with a level board (|tilt| ≤ " + num(options.level_tilt_deg) +
                      "°), at least 10 are needed");
   }
-  // Pre-computed per sample: Σn², h², f_z.
+  // Per sample: Σn², h, f_z.
   std::vector<double> S(idx.size());
-  std::vector<double> h2(idx.size());
+  std::vector<double> h(idx.size());
   std::vector<double> fz(idx.size());
-  out.h_min_m = std::numeric_limits<double>::infinity();
-  out.h_max_m = -std::numeric_limits<double>::infinity();
   for (std::size_t j = 0; j < idx.size(); ++j) {
-    const std::size_t i = idx[j];
-    S[j] = sumSquares(log, i);
-    h2[j] = log.h_m[i] * log.h_m[i];
-    fz[j] = log.f_N[2][i];
-    out.h_min_m = std::min(out.h_min_m, log.h_m[i]);
-    out.h_max_m = std::max(out.h_max_m, log.h_m[i]);
+    S[j] = sumSquares(log, idx[j]);
+    h[j] = log.h_m[idx[j]];
+    fz[j] = log.f_N[2][idx[j]];
   }
-
-  const LeastSquaresFit fit = detail::fitThrustWithGroundEffect(
-      S, h2, fz, options.robust, log.source, "k_T, g1, g2 (F_G(h) = g2/(h² + g1) on the level board)");
-  out.k_T_N_per_rpm2 = fit.estimate(0);
-  out.g1_m2 = fit.estimate(1);
-  out.g2_m2 = fit.estimate(2);
-  out.covariance = fit.covariance;
-  out.stats = fit.stats;
+  AdditionalThrustFit out = detail::fitThrustWithGroundEffect(
+      S, h, fz, options.robust, log.source, "k_T, g1, g2 (F_G(h) = g2/(h² + g1) on the level board)");
   const std::string range = "heights " + num(out.h_min_m) + "–" + num(out.h_max_m) +
                             " m; log heights from the lowest flyable to well out of ground effect";
   detail::warnIfImprecise(out.warnings, "g1", out.g1_m2, range);

@@ -563,12 +563,6 @@ void addLeveling(VehicleUpdate& u, const LevelingFit& f) {
   u.set("ground_effect.leveling_torque.scale_m4", f.scale_m4);
 }
 
-void addHoverThrust(VehicleUpdate& u, const HoverThrustFit& f) {
-  u.set("rotor.k_T_N_per_rpm2", f.k_T_N_per_rpm2);
-  u.set("ground_effect.additional_thrust.g1_m2", f.g1_m2);
-  u.set("ground_effect.additional_thrust.g2_m2", f.g2_m2);
-}
-
 void addDrag(VehicleUpdate& u, const DragFit& f) {
   const model::DragTableParams t = dragTable(f);
   u.setList("drag.heights_m", t.heights_m);

@@ -16,25 +16,16 @@
 #include <Eigen/Core>
 
 #include "geaware/ident/least_squares.hpp"
+#include "geaware/ident/platform_fit.hpp"
 #include "geaware/ident/rig_logs.hpp"
 #include "geaware/model/vehicle_params.hpp"
 
 namespace geaware::ident {
 
-struct HoverThrustFit {
-  Estimate k_T_N_per_rpm2;  ///< k_T in hover
-  Estimate g1_m2;
-  Estimate g2_m2;
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< of (k_T, g1, g2)
-  FitStats stats;                                        ///< residuals in N
-  double h_min_m = kNaN;
-  double h_max_m = kNaN;
-  std::vector<std::string> warnings;
-};
-
-/// k_T_N_per_rpm2: the k_T the log's external acceleration was computed with. Throws
+/// k_T_N_per_rpm2: the k_T the log's external acceleration was computed with. The result is
+/// the level board's kind: k_T in hover, g1, g2, their covariance, residuals in N. Throws
 /// IdentError when the log cannot constrain k_T, g1 and g2.
-[[nodiscard]] HoverThrustFit fitHoverAdditionalThrust(const FlightLog& log, double mass_kg,
+[[nodiscard]] AdditionalThrustFit fitHoverAdditionalThrust(const FlightLog& log, double mass_kg,
                                                       double k_T_N_per_rpm2,
                                                       const RobustOptions& robust = {});
 

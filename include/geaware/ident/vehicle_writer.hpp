@@ -89,7 +89,6 @@ void addAdditionalThrust(VehicleUpdate& update, const AdditionalThrustFit& fit,
 void addMixing(VehicleUpdate& update, const MixingFit& fit);
 /// g3, g4, scale (the scale belongs to the k_T the fit used: merge that k_T with it).
 void addLeveling(VehicleUpdate& update, const LevelingFit& fit);
-void addHoverThrust(VehicleUpdate& update, const HoverThrustFit& fit);
 void addDrag(VehicleUpdate& update, const DragFit& fit);
 
 struct MergeResult {
