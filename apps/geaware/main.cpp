@@ -8,14 +8,24 @@
 
 #include "bench_command.hpp"
 #include "commands.hpp"
+#include "geaware/io/provenance.hpp"
 #include "fly_command.hpp"
 #include "identify_command.hpp"
 #include "rig_command.hpp"
 
+namespace geaware::cli {
+namespace {
+std::string g_command_line;
+}  // namespace
+const std::string& commandLine() { return g_command_line; }
+}  // namespace geaware::cli
+
 int main(int argc, char** argv) {
+  geaware::cli::g_command_line = geaware::io::shellQuotedCommandLine(argc, argv);
   CLI::App app{"geaware — ground-effect-aware modelling, identification and control for multicopters"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "geaware 0.1.0");
+  app.set_version_flag("--version", "geaware " + std::string(geaware::io::geawareVersion()) + " (" +
+                                        std::string(geaware::io::geawareCommit()) + ")");
 
   std::function<int()> run;
   const auto model = geaware::cli::addModelCommand(app);
