@@ -67,7 +67,11 @@ DragFit fitDrag(const FlightLog& log, double mass_kg, const DragFitOptions& opti
             [&](std::size_t a, std::size_t b) { return log.h_m[a] < log.h_m[b]; });
   std::vector<double> sorted_h(n);
   for (std::size_t m = 0; m < n; ++m) sorted_h[m] = log.h_m[order[m]];
-  for (const auto& [first, last] : detail::bandRanges(sorted_h, options.height_bands)) {
+  for (const auto& range : detail::bandRanges(sorted_h, options.height_bands)) {
+    // Named copies, not a structured binding: the lambda below captures them, which C++20
+    // allows for structured bindings but clang 14 does not implement.
+    const std::size_t first = range.first;
+    const std::size_t last = range.second;
     DragBand band;
     band.count = last - first;
     band.h_min_m = sorted_h[first];
