@@ -21,7 +21,7 @@
 #include <optional>
 
 #include "geaware/ident/fits.hpp"
-#include "geaware/ident/vehicle_writer.hpp"
+#include "geaware/ident/vehicle_update.hpp"
 #include "geaware/io/range.hpp"
 #include "geaware/io/vehicle_file.hpp"
 #include "geaware/model/height_table.hpp"
@@ -69,7 +69,7 @@ struct Outcome {
   std::vector<Param> params;
   std::vector<Fit> fits;
   std::vector<std::string> warnings;
-  ident::VehicleUpdate update;
+  io::VehicleUpdate update;
   std::string json_extra;  ///< additional JSON members (",\"key\":value…")
 };
 
@@ -277,7 +277,7 @@ Outcome identifyPlatform(const IdentifyOptions& opt, const std::map<std::string,
     o.params.push_back({"rotor.k_T_N_per_rpm2", k_T, "N/rpm²"});
     o.fits = {{"f_z = k_T·Σn²·(1 + F_G(h))", fit.stats, "N"}};
     o.warnings = fit.warnings;
-    o.update.set("rotor.k_T_N_per_rpm2", k_T);
+    ident::setEstimate(o.update, "rotor.k_T_N_per_rpm2", k_T);
     fitted_F = takeTable(o, {"F_G", "-", "additional_thrust", "F_G"}, fit.F_G, tables_json);
     h_min = fit.h_min_m;
     h_max = fit.h_max_m;
@@ -561,8 +561,8 @@ int runIdentify(const IdentifyOptions& opt) {
     if (o.update.empty()) throw std::invalid_argument("--out: `identify " + opt.kind + "` fits no vehicle-file keys");
     o.update.provenance = std::filesystem::path(opt.log).filename().string();
     const auto result = opt.vehicle.empty()
-                            ? ident::writeVehicleFile(io::builtinVehicleYaml(), "built-in vehicle", opt.out, o.update)
-                            : ident::writeVehicleFile(opt.vehicle, opt.out, o.update);
+                            ? io::writeVehicleFile(io::builtinVehicleYaml(), "built-in vehicle", opt.out, o.update)
+                            : io::writeVehicleFile(opt.vehicle, opt.out, o.update);
     for (const auto& n : result.notes) std::cerr << "geaware: note: " << opt.out << ": " << n << "\n";
   }
   if (!opt.json.empty()) {

@@ -7,7 +7,7 @@
 
 #include <Eigen/Core>
 
-#include "geaware/model/vehicle_params.hpp"
+#include "geaware/model/field_error.hpp"
 
 namespace geaware::control {
 

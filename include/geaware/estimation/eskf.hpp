@@ -24,7 +24,7 @@
 #include "geaware/control/controller.hpp"
 #include "geaware/model/sensor_data.hpp"
 #include "geaware/model/units.hpp"
-#include "geaware/model/vehicle_params.hpp"
+#include "geaware/model/field_error.hpp"
 
 namespace geaware::estimation {
 

@@ -13,7 +13,7 @@
 #include <string_view>
 #include <vector>
 
-#include "geaware/model/vehicle_params.hpp"
+#include "geaware/model/field_error.hpp"
 
 namespace geaware::model {
 

@@ -8,15 +8,9 @@
 
 #include <Eigen/Core>
 
-namespace geaware::model {
+#include "geaware/model/field_error.hpp"
 
-/// One field that failed validation. `field` is the key path as written in the vehicle file
-/// (e.g. "rotor.k_T_N_per_rpm2"), so loaders can point at the offending line.
-struct FieldError {
-  std::string field;     ///< key path, dot separated
-  std::string value;     ///< the offending value, printed
-  std::string expected;  ///< what a valid value looks like
-};
+namespace geaware::model {
 
 /// Rotor and mixer coefficients (paper eq. 2). Speeds are in rpm.
 struct RotorParams {

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "geaware/control/residual_force.hpp"
-#include "geaware/model/vehicle_params.hpp"
+#include "geaware/model/field_error.hpp"
 #include "geaware/neural/spectral_norm.hpp"
 
 namespace geaware::neural {

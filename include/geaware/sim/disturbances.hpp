@@ -33,7 +33,7 @@
 
 #include <Eigen/Core>
 
-#include "geaware/model/vehicle_params.hpp"
+#include "geaware/model/field_error.hpp"
 #include "geaware/sim/plant.hpp"
 #include "geaware/sim/plant_state.hpp"
 #include "geaware/sim/sampling.hpp"

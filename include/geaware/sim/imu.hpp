@@ -26,7 +26,7 @@
 
 #include "geaware/model/sensor_data.hpp"
 #include "geaware/model/units.hpp"
-#include "geaware/model/vehicle_params.hpp"
+#include "geaware/model/field_error.hpp"
 #include "geaware/sim/plant_state.hpp"
 #include "geaware/sim/sampling.hpp"
 

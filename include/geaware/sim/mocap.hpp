@@ -27,7 +27,7 @@
 #include <Eigen/Core>
 
 #include "geaware/model/sensor_data.hpp"
-#include "geaware/model/vehicle_params.hpp"
+#include "geaware/model/field_error.hpp"
 #include "geaware/sim/plant_state.hpp"
 #include "geaware/sim/sampling.hpp"
 

@@ -20,7 +20,7 @@
 #include <array>
 #include <vector>
 
-#include "geaware/model/vehicle_params.hpp"
+#include "geaware/model/field_error.hpp"
 #include "geaware/sim/wrench.hpp"
 
 namespace geaware::sim {

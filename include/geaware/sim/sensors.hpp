@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "geaware/model/sensor_data.hpp"
-#include "geaware/model/vehicle_params.hpp"
+#include "geaware/model/field_error.hpp"
 #include "geaware/sim/imu.hpp"
 #include "geaware/sim/mocap.hpp"
 #include "geaware/sim/plant_state.hpp"

@@ -26,18 +26,16 @@
 // physical validation) and read back the merged values, tables included, or nothing is
 // written.
 
+//
+// Identification turns its fits into a VehicleUpdate with ident/vehicle_update.hpp.
+
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "geaware/ident/flight_fit.hpp"
-#include "geaware/ident/leveling_fit.hpp"
-#include "geaware/ident/least_squares.hpp"
-#include "geaware/ident/platform_fit.hpp"
-#include "geaware/ident/rotor_fit.hpp"
-
-namespace geaware::ident {
+namespace geaware::io {
 
 /// The values to merge, by key path of the vehicle file ("rotor.k_T_N_per_rpm2").
 class VehicleUpdate {
@@ -46,7 +44,7 @@ class VehicleUpdate {
     std::string key;                 ///< key path; for a table, the section ("ground_effect.…")
     std::vector<double> values;      ///< one value for a scalar key; a table's curve values
     bool list = false;               ///< the drag table's lists
-    double std_error = kNaN;         ///< written in the line's comment when known
+    double std_error = std::numeric_limits<double>::quiet_NaN();  ///< in the comment when known
     bool table = false;              ///< a ground-effect curve table (setTable)
     std::vector<double> heights_m;   ///< the table's knots [m]
     std::vector<double> std_errors;  ///< standard errors of the table's values, or empty
@@ -54,8 +52,8 @@ class VehicleUpdate {
 
   /// Sets a scalar key; throws std::invalid_argument for a key identification does not fit
   /// or a non-finite value. Setting a key again replaces the earlier value.
-  void set(const std::string& key, double value, double std_error = kNaN);
-  void set(const std::string& key, const Estimate& e) { set(key, e.value, e.std_error); }
+  void set(const std::string& key, double value,
+           double std_error = std::numeric_limits<double>::quiet_NaN());
   /// Sets one of the drag table's lists.
   void setList(const std::string& key, std::vector<double> values);
   /// Sets a ground-effect curve as a table: `section` is "ground_effect.additional_thrust"
@@ -80,17 +78,6 @@ class VehicleUpdate {
   std::vector<Entry> entries_;
 };
 
-/// k_T, k_I, J_R (when fitted) and the throttle curve.
-void addRotorFit(VehicleUpdate& update, const RotorFit& fit);
-/// g1, g2 and, with include_k_T, the k_T fitted with them.
-void addAdditionalThrust(VehicleUpdate& update, const AdditionalThrustFit& fit,
-                         bool include_k_T = true);
-/// k_TX, k_TY, k_I where fitted.
-void addMixing(VehicleUpdate& update, const MixingFit& fit);
-/// g3, g4, scale (the scale belongs to the k_T the fit used: merge that k_T with it).
-void addLeveling(VehicleUpdate& update, const LevelingFit& fit);
-void addDrag(VehicleUpdate& update, const DragFit& fit);
-
 struct MergeResult {
   std::string yaml;                ///< the merged file's text
   bool comments_preserved = true;  ///< false when the file had to be re-emitted
@@ -114,4 +101,4 @@ MergeResult writeVehicleFile(const std::filesystem::path& base, const std::files
 MergeResult writeVehicleFile(std::string_view base_text, const std::string& base_name,
                              const std::filesystem::path& out, const VehicleUpdate& update);
 
-}  // namespace geaware::ident
+}  // namespace geaware::io

@@ -1,0 +1,111 @@
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+#include "geaware/io/vehicle_writer.hpp"
+#include "vehicle_text.hpp"
+
+namespace geaware::io {
+
+using detail::CurveSection;
+using detail::sectionByPath;
+using detail::sectionOfKey;
+
+const std::vector<std::string>& VehicleUpdate::fittedKeys() {
+  static const std::vector<std::string> keys = {
+      "rotor.k_T_N_per_rpm2",
+      "rotor.k_TX_N_per_rpm2",
+      "rotor.k_TY_N_per_rpm2",
+      "rotor.k_I_Nm_per_rpm2",
+      "rotor.J_R_kgm2",
+      "throttle_curve.c2_rpm2",
+      "throttle_curve.c1_rpm2",
+      "throttle_curve.c0_rpm2",
+      "ground_effect.additional_thrust.g1_m2",
+      "ground_effect.additional_thrust.g2_m2",
+      "ground_effect.leveling_torque.g3_m",
+      "ground_effect.leveling_torque.g4_m2",
+      "ground_effect.leveling_torque.scale_m4",
+      "drag.heights_m",
+      "drag.d_x_N_per_mps",
+      "drag.d_y_N_per_mps",
+  };
+  return keys;
+}
+
+namespace {
+bool isListKey(const std::string& key) { return key.rfind("drag.", 0) == 0; }
+}  // namespace
+
+void VehicleUpdate::set(const std::string& key, double value, double std_error) {
+  const auto& keys = fittedKeys();
+  if (std::find(keys.begin(), keys.end(), key) == keys.end() || isListKey(key)) {
+    throw std::invalid_argument("VehicleUpdate: '" + key + "' is not a fitted scalar key");
+  }
+  if (!std::isfinite(value)) {
+    throw std::invalid_argument("VehicleUpdate: " + key + " is not finite");
+  }
+  const CurveSection* section = sectionOfKey(key);
+  std::erase_if(entries_, [&](const Entry& e) {
+    return e.key == key || (section != nullptr && e.table && e.key == section->path);
+  });
+  Entry e;
+  e.key = key;
+  e.values = {value};
+  e.std_error = std_error;
+  entries_.push_back(std::move(e));
+}
+
+void VehicleUpdate::setList(const std::string& key, std::vector<double> values) {
+  if (!isListKey(key)) throw std::invalid_argument("VehicleUpdate: '" + key + "' is not a list key");
+  for (const double v : values) {
+    if (!std::isfinite(v)) throw std::invalid_argument("VehicleUpdate: " + key + " is not finite");
+  }
+  std::erase_if(entries_, [&](const Entry& e) { return e.key == key; });
+  Entry e;
+  e.key = key;
+  e.values = std::move(values);
+  e.list = true;
+  entries_.push_back(std::move(e));
+}
+
+void VehicleUpdate::setTable(const std::string& section, std::vector<double> heights_m,
+                             std::vector<double> values, std::vector<double> std_errors) {
+  const CurveSection* s = sectionByPath(section);
+  if (s == nullptr) {
+    throw std::invalid_argument("VehicleUpdate: '" + section +
+                                "' is not a ground-effect curve (ground_effect.additional_thrust "
+                                "or ground_effect.leveling_torque)");
+  }
+  if (heights_m.size() < 2) {
+    throw std::invalid_argument("VehicleUpdate: the " + section +
+                                " table needs at least 2 knots, got " +
+                                std::to_string(heights_m.size()));
+  }
+  if (values.size() != heights_m.size() ||
+      (!std_errors.empty() && std_errors.size() != heights_m.size())) {
+    throw std::invalid_argument(
+        "VehicleUpdate: the " + section + " table has " + std::to_string(heights_m.size()) +
+        " heights, " + std::to_string(values.size()) + " values of " + s->values_key + " and " +
+        std::to_string(std_errors.size()) +
+        " std. errors (expected one value, and none or one std. error, per height)");
+  }
+  const auto finite = [](const std::vector<double>& v) {
+    return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
+  };
+  if (!finite(heights_m) || !finite(values) || !finite(std_errors)) {
+    throw std::invalid_argument("VehicleUpdate: the " + section + " table is not finite");
+  }
+  std::erase_if(entries_,
+                [&](const Entry& e) { return e.key == section || sectionOfKey(e.key) == s; });
+  Entry e;
+  e.key = section;
+  e.values = std::move(values);
+  e.table = true;
+  e.heights_m = std::move(heights_m);
+  e.std_errors = std::move(std_errors);
+  entries_.push_back(std::move(e));
+}
+
+}  // namespace geaware::io
