@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "geaware/model/rotation.hpp"
 #include "geaware/model/units.hpp"
 
 namespace geaware::control {
@@ -34,17 +35,6 @@ bool usesJPrime(TorqueCompensation t) {
 
 bool usesIncrementalTorque(TorqueCompensation t) {
   return t == TorqueCompensation::kIndi || t == TorqueCompensation::kModelIndi;
-}
-
-/// Attitude error ξ_e = ξ̂⁻¹∘ξ_des as an angle vector (paper eq. 32): angle·axis of the error
-/// rotation, taking the short way round (q and −q are the same attitude).
-Eigen::Vector3d attitudeErrorVector(const Eigen::Quaterniond& q_est, const Eigen::Quaterniond& q_des) {
-  Eigen::Quaterniond e = q_est.conjugate() * q_des;
-  if (e.w() < 0.0) e.coeffs() = -e.coeffs();
-  const Eigen::Vector3d v = e.vec();
-  const double s = v.norm();
-  if (s < 1e-9) return 2.0 * v;  // small-angle limit of 2·atan2(s, w)/s·v
-  return (2.0 * std::atan2(s, e.w()) / s) * v;
 }
 
 /// Rotation with body z along `z_des` and body x perpendicular to the heading's y axis.
@@ -90,10 +80,10 @@ Controller::Controller(const model::VehicleModel& vehicle, ControllerParams para
 
 void Controller::reset() noexcept {
   const ControllerParams& p = params_;
-  w_filter_ = LowPass2<3>(p.filter_cutoff_hz, p.rate_hz);
-  tau_hat_filter_ = LowPass2<3>(p.filter_cutoff_hz, p.rate_hz);
-  accel_filter_ = LowPass2<3>(p.filter_cutoff_hz, p.rate_hz);
-  thrust_vector_filter_ = LowPass2<3>(p.filter_cutoff_hz, p.rate_hz);
+  w_filter_ = model::LowPass2<3>(p.filter_cutoff_hz, p.rate_hz);
+  tau_hat_filter_ = model::LowPass2<3>(p.filter_cutoff_hz, p.rate_hz);
+  accel_filter_ = model::LowPass2<3>(p.filter_cutoff_hz, p.rate_hz);
+  thrust_vector_filter_ = model::LowPass2<3>(p.filter_cutoff_hz, p.rate_hz);
   have_last_w_ = false;
   thrust_pi_integral_ = 0.0;
   last_height_m_ = kFarFromGroundM;
@@ -252,7 +242,8 @@ ControllerOutput Controller::update(const ControllerInput& in) noexcept {
   // 3. Attitude, body-rate and body-acceleration commands (paper eq. 32).
   const Eigen::Vector3d z_des = f_cmd.normalized();
   const Eigen::Quaterniond q_des(attitudeFrom(z_des, r.yaw_rad));
-  const Eigen::Vector3d xi_e = attitudeErrorVector(q_est, q_des);
+  // Attitude error ξ_e = ξ̂⁻¹∘ξ_des as an angle vector (paper eq. 32), the short way round.
+  const Eigen::Vector3d xi_e = model::logMap(q_est.conjugate() * q_des);
   const Eigen::Vector3d w_des = params_.k_xi_per_s.cwiseProduct(xi_e) + ref.w_B;
   const Eigen::Vector3d w_dot_des = params_.k_w_per_s.cwiseProduct(w_des - w_f) + ref.w_dot_B;
 

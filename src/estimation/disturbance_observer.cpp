@@ -35,10 +35,10 @@ DisturbanceObserver::DisturbanceObserver(const model::VehicleModel& vehicle,
 
 void DisturbanceObserver::reset() noexcept {
   const auto& p = params_;
-  w_filter_ = control::LowPass2<3>(p.filter_cutoff_hz, p.rate_hz);
-  tau_filter_ = control::LowPass2<3>(p.filter_cutoff_hz, p.rate_hz);
-  accel_filter_ = control::LowPass2<3>(p.filter_cutoff_hz, p.rate_hz);
-  thrust_filter_ = control::LowPass2<1>(p.filter_cutoff_hz, p.rate_hz);
+  w_filter_ = model::LowPass2<3>(p.filter_cutoff_hz, p.rate_hz);
+  tau_filter_ = model::LowPass2<3>(p.filter_cutoff_hz, p.rate_hz);
+  accel_filter_ = model::LowPass2<3>(p.filter_cutoff_hz, p.rate_hz);
+  thrust_filter_ = model::LowPass2<1>(p.filter_cutoff_hz, p.rate_hz);
   have_prev_ = false;
   last_ = DisturbanceEstimate{};
   status_ = ObserverStatus::kWarmingUp;

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "geaware/model/field_check.hpp"
+#include "geaware/model/rotation.hpp"
 #include "geaware/model/vehicle_model.hpp"
 
 namespace geaware::estimation {
@@ -65,22 +66,6 @@ const char* toString(EskfStatus s) noexcept {
       return "deferred queue full";
   }
   return "?";
-}
-
-Eigen::Vector3d rotationVector(const Eigen::Quaterniond& q_in) noexcept {
-  // Shorter path: q and −q are the same rotation; pick w ≥ 0 so |θ| ≤ π.
-  const Eigen::Quaterniond q = q_in.w() < 0.0 ? Eigen::Quaterniond(-q_in.coeffs()) : q_in;
-  const double s = q.vec().norm();
-  if (s < 1e-9) return 2.0 * q.vec() / q.w();  // θ ≈ 2·v for tiny angles (w ≈ 1)
-  return 2.0 * std::atan2(s, q.w()) / s * q.vec();
-}
-
-Eigen::Quaterniond quaternionExp(const Eigen::Vector3d& theta) noexcept {
-  const double a = theta.norm();
-  if (a < 1e-9)
-    return Eigen::Quaterniond(1.0, 0.5 * theta.x(), 0.5 * theta.y(), 0.5 * theta.z()).normalized();
-  const Vec3 v = std::sin(0.5 * a) / a * theta;
-  return {std::cos(0.5 * a), v.x(), v.y(), v.z()};
 }
 
 std::vector<model::FieldError> EskfParams::validate() const {
@@ -175,11 +160,11 @@ void Eskf::propagate(EskfState& x, Cov& P, const Vec3& w0, const Vec3& a0, const
   // interval and the rotation taken at its middle, so a smooth motion integrates to second order.
   const Vec3 w = 0.5 * (w0 + w1) - x.gyro_bias_B;
   const Vec3 a = 0.5 * (a0 + a1) - x.accel_bias_B;
-  const Mat3 R_mid = (x.q_WB * quaternionExp(0.5 * dt * w)).toRotationMatrix();
+  const Mat3 R_mid = (x.q_WB * model::expMap(0.5 * dt * w)).toRotationMatrix();
   const Vec3 a_W = R_mid * a - params_.gravity_mps2 * Vec3::UnitZ();
   x.p_W += x.v_W * dt + 0.5 * dt * dt * a_W;
   x.v_W += a_W * dt;
-  const Eigen::Quaterniond dq = quaternionExp(w * dt);
+  const Eigen::Quaterniond dq = model::expMap(w * dt);
   x.q_WB = (x.q_WB * dq).normalized();
 
   // Error-state covariance (Solà eqs. 269–270): P ← F·P·Fᵀ + Q, with Q from the continuous
@@ -207,7 +192,7 @@ bool Eskf::update(EskfState& x, Cov& P, const model::MocapSample& m, bool gated)
   // residual is I to first order).
   Vec6 r;
   r.head<3>() = m.p_W - x.p_W;
-  r.tail<3>() = rotationVector(x.q_WB.conjugate() * m.q_WB);
+  r.tail<3>() = model::logMap(x.q_WB.conjugate() * m.q_WB);
   Mat6 S;
   S.topLeftCorner<3, 3>() = P.block<3, 3>(kP, kP);
   S.topRightCorner<3, 3>() = P.block<3, 3>(kP, kTh);
@@ -249,7 +234,7 @@ bool Eskf::update(EskfState& x, Cov& P, const model::MocapSample& m, bool gated)
   // Injection (Solà eq. 283) and reset (eqs. 285–287): G = I except G_θθ = I − [½·δθ]×.
   x.p_W += dx.segment<3>(kP);
   x.v_W += dx.segment<3>(kV);
-  x.q_WB = (x.q_WB * quaternionExp(dx.segment<3>(kTh))).normalized();
+  x.q_WB = (x.q_WB * model::expMap(dx.segment<3>(kTh))).normalized();
   x.accel_bias_B += dx.segment<3>(kBa);
   x.gyro_bias_B += dx.segment<3>(kBg);
   const Mat3 G = Mat3::Identity() - skew(0.5 * dx.segment<3>(kTh));

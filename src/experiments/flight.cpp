@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "geaware/flatness/flat_map.hpp"
+#include "geaware/model/rotation.hpp"
 #include "geaware/model/units.hpp"
 #include "geaware/model/vehicle_model.hpp"
 #include "geaware/sim/rotor_aerodynamics.hpp"
@@ -78,12 +79,6 @@ std::shared_ptr<const sim::Terrain> terrainOf(const FlightScenario& s) {
 /// Vertical distance from the rotor-plane centre to the terrain under it [m].
 double heightAbove(const sim::Terrain& terrain, const Eigen::Vector3d& p_W) noexcept {
   return p_W.z() - terrain.heightAt(p_W.x(), p_W.y());
-}
-
-/// Angle of the rotation between two attitudes [rad], the short way round.
-double angleBetween(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) noexcept {
-  const Eigen::Quaterniond e = a.conjugate() * b;
-  return 2.0 * std::atan2(e.vec().norm(), std::abs(e.w()));
 }
 
 /// The flat map of the nominal vehicle along the trajectory, at the control rate: the rotor
@@ -361,7 +356,7 @@ FlightResult runFlight(const FlightScenario& s, FlightObserver* observer) {
           e0.p_W = r.mocap->p_W + s.estimator_start.position_error_m;
           e0.v_W = s.estimator_start.velocity_error_mps;
           e0.q_WB =
-              (r.mocap->q_WB * estimation::quaternionExp(s.estimator_start.attitude_error_rad))
+              (r.mocap->q_WB * model::expMap(s.estimator_start.attitude_error_rad))
                   .normalized();
           eskf->initialise(e0, last_imu_t_s);
         } else {
@@ -415,7 +410,7 @@ FlightResult runFlight(const FlightScenario& s, FlightObserver* observer) {
         for (int b = 0; b < kControllerFlagBits; ++b) {
           if ((tick.output.flags >> b) & 1u) ++result.flag_counts[static_cast<std::size_t>(b)];
         }
-        tick.attitude_error_rad = angleBetween(x.q_WB, tick.output.q_des_WB);
+        tick.attitude_error_rad = model::angleBetween(x.q_WB, tick.output.q_des_WB);
       } else {
         tick.output = control::ControllerOutput{};
         tick.output.throttle = throttle;
@@ -429,7 +424,7 @@ FlightResult runFlight(const FlightScenario& s, FlightObserver* observer) {
         if (tick.controller_active) {
           est_p.add((in.estimate.p_W - x.p_W).norm());
           est_v.add((in.estimate.v_W - x.v_W).norm());
-          est_q.add(angleBetween(in.estimate.q_WB, x.q_WB) * kRadToDeg);
+          est_q.add(model::angleBetween(in.estimate.q_WB, x.q_WB) * kRadToDeg);
           const double h = tick.true_height_m;
           if (h >= 0.0 && h < s.hover_bins.max_height_m) {
             const auto i =

@@ -3,11 +3,16 @@
 #include <limits>
 #include <utility>
 
-#include "geaware/ident/csv_log.hpp"
+#include "geaware/io/csv_reader.hpp"
 
 namespace geaware::ident {
 
 namespace {
+
+using io::CsvColumn;
+using io::CsvReadOptions;
+using io::CsvTable;
+using io::readCsv;
 
 // Plausible ranges by unit: generous for real vehicles, tight enough to catch a unit slip
 // (heights in mm, tilt in rad vs deg is not caught but a tilt in mrad or a throttle in % is).

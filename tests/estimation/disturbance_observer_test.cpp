@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "geaware/estimation/eskf.hpp"
+#include "geaware/model/rotation.hpp"
 #include "geaware/model/units.hpp"
 #include "geaware_test/eigen_matchers.hpp"
 #include "geaware_test/paper_vehicle.hpp"
@@ -17,6 +18,8 @@ namespace {
 
 using namespace geaware::estimation;
 using Eigen::Quaterniond;
+using geaware::model::expMap;
+using geaware::model::logMap;
 using Eigen::Vector3d;
 using Eigen::Vector4d;
 using geaware_test::paperVehicle;
@@ -46,7 +49,7 @@ Vector4d speedsFor(double thrust, const Vector3d& tau) {
 
 /// Attitude along the run: a slow analytic rotation (only rotates ã_ext to the world).
 Quaterniond attitudeAt(double t) {
-  return quaternionExp(Vector3d(0.2 * std::sin(0.5 * t), 0.15 * std::cos(0.4 * t), 0.3 * t));
+  return expMap(Vector3d(0.2 * std::sin(0.5 * t), 0.15 * std::cos(0.4 * t), 0.3 * t));
 }
 
 DisturbanceObserverInput inputAt(double t, const Vector3d& force_ext_W, const Vector3d& tau_ext_B) {

@@ -32,26 +32,20 @@
 #include <Eigen/Geometry>
 
 #include "geaware/control/controller_params.hpp"
-#include "geaware/control/low_pass.hpp"
 #include "geaware/control/residual_force.hpp"
 #include "geaware/flatness/flat_map.hpp"
+#include "geaware/model/low_pass.hpp"
+#include "geaware/model/state_estimate.hpp"
 #include "geaware/model/vehicle_model.hpp"
 #include "geaware/traj/flat_output.hpp"
 
 namespace geaware::control {
 
-/// The state estimate the controller flies on (from estimation/, never the simulator's truth).
-struct StateEstimate {
-  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();             ///< position [m]
-  Eigen::Vector3d v_W = Eigen::Vector3d::Zero();             ///< velocity [m/s]
-  Eigen::Quaterniond q_WB = Eigen::Quaterniond::Identity();  ///< attitude, body → world
-};
-
 /// Everything the controller reads in one update.
 struct ControllerInput {
   double t_s = 0.0;                       ///< time [s] (monotonic; used for logging only)
   traj::FlatOutput reference;             ///< flat outputs of the trajectory at t
-  StateEstimate estimate;
+  model::StateEstimate estimate;  ///< from estimation/, never the simulator's truth
   Eigen::Vector3d gyro_B = Eigen::Vector3d::Zero();   ///< bias-corrected body rates [rad/s]
   Eigen::Vector3d accel_B = Eigen::Vector3d::Zero();  ///< bias-corrected specific force [m/s²]
   double height_m = 0.0;                  ///< rotor-plane height from the ranger [m]
@@ -128,10 +122,10 @@ class Controller {
 
   // Filters in step (one type, one cut-off): ω (differentiated for ω̇_f) with τ̂_B, and the
   // measured acceleration with the rotor-speed thrust vector for translational INDI.
-  LowPass2<3> w_filter_;
-  LowPass2<3> tau_hat_filter_;
-  LowPass2<3> accel_filter_;
-  LowPass2<3> thrust_vector_filter_;
+  model::LowPass2<3> w_filter_;
+  model::LowPass2<3> tau_hat_filter_;
+  model::LowPass2<3> accel_filter_;
+  model::LowPass2<3> thrust_vector_filter_;
   Eigen::Vector3d last_w_f_ = Eigen::Vector3d::Zero();
   bool have_last_w_ = false;
   double thrust_pi_integral_ = 0.0;

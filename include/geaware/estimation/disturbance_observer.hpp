@@ -3,7 +3,7 @@
 //   ã_ext = (a − g)_f^imu − z_B·T_f/m,
 //   τ̃_ext = J·ω̇_f + ω_f × J·ω_f − τ_B,f,
 // with T and τ_B from the measured rotor speeds through the mixer (eq. 2), and every input
-// passed through the same second-order low-pass (control::LowPass2, one cut-off) so that the
+// passed through the same second-order low-pass (model::LowPass2, one cut-off) so that the
 // filtered quantities are delayed alike. (a − g)^imu is the IMU's specific force; in the body
 // frame it is compared with T_f/m along z_B, and the difference is rotated to the world.
 // Also the paper's flight estimate of the additional-thrust ratio (its equation
@@ -20,7 +20,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "geaware/control/low_pass.hpp"
+#include "geaware/model/low_pass.hpp"
 #include "geaware/model/mixer.hpp"
 #include "geaware/model/vehicle_model.hpp"
 
@@ -82,10 +82,10 @@ class DisturbanceObserver {
   Eigen::Vector3d inertia_kgm2_;
   model::Mixer mixer_;
   // One filter type, one cut-off (the paper's "(·)_f"): ω, τ_B, specific force, thrust.
-  control::LowPass2<3> w_filter_;
-  control::LowPass2<3> tau_filter_;
-  control::LowPass2<3> accel_filter_;
-  control::LowPass2<1> thrust_filter_;
+  model::LowPass2<3> w_filter_;
+  model::LowPass2<3> tau_filter_;
+  model::LowPass2<3> accel_filter_;
+  model::LowPass2<1> thrust_filter_;
   // Filtered values and attitude of the previous sample.
   Eigen::Vector3d w_prev_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d tau_prev_ = Eigen::Vector3d::Zero();

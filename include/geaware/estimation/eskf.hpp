@@ -21,8 +21,8 @@
 #include <string>
 #include <vector>
 
-#include "geaware/control/controller.hpp"
 #include "geaware/model/sensor_data.hpp"
+#include "geaware/model/state_estimate.hpp"
 #include "geaware/model/units.hpp"
 #include "geaware/model/field_error.hpp"
 
@@ -108,7 +108,7 @@ struct EskfCounters {
 struct EskfOutput {
   double t_s = 0.0;  ///< time of the newest IMU sample [s]
   bool initialised = false;
-  control::StateEstimate estimate;                    ///< p, v, q for the controller
+  model::StateEstimate estimate;                      ///< p, v, q for the controller
   Eigen::Vector3d gyro_B = Eigen::Vector3d::Zero();   ///< ω_m − b_g [rad/s]
   Eigen::Vector3d accel_B = Eigen::Vector3d::Zero();  ///< a_m − b_a, specific force [m/s²]
   Eigen::Vector3d accel_bias_B = Eigen::Vector3d::Zero();
@@ -189,10 +189,5 @@ class Eskf {
   bool have_imu_ = false;
   model::ImuSample last_imu_;
 };
-
-/// Rotation vector of a unit quaternion (Log map), taking the shorter of q and −q [rad].
-[[nodiscard]] Eigen::Vector3d rotationVector(const Eigen::Quaterniond& q) noexcept;
-/// Unit quaternion of a rotation vector (Exp map).
-[[nodiscard]] Eigen::Quaterniond quaternionExp(const Eigen::Vector3d& theta) noexcept;
 
 }  // namespace geaware::estimation

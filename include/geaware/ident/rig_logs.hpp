@@ -1,7 +1,7 @@
 #pragma once
 // The logs identification reads (formats in docs/identification.md, "Log formats"): the
 // quadrotor force/torque platform, the single-rotor stand, and flight logs. Each reader keeps
-// only the columns it needs, as vectors of doubles, read in one pass (ident/csv_log.hpp);
+// only the columns it needs, as vectors of doubles, read in one pass (io/csv_reader.hpp);
 // column names are configurable, with the rigs' names as defaults, and every column's values
 // are checked against a plausible range for its unit.
 

@@ -1,18 +1,19 @@
 // The streaming CSV reader: values come back in the requested order, and every kind of bad
 // log is an error naming the file, the line and the column.
 
-#include "geaware/ident/csv_log.hpp"
+#include "geaware/io/csv_reader.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <string>
 
 #include <gtest/gtest.h>
 
-#include "geaware/ident/rig_logs.hpp"
-#include "synthetic.hpp"
-
 namespace {
 
-using geaware::ident::CsvError;
-using geaware::ident::CsvReadOptions;
-using geaware::ident::readCsv;
+using geaware::io::CsvError;
+using geaware::io::CsvReadOptions;
+using geaware::io::readCsv;
 
 CsvReadOptions threeColumns() {
   CsvReadOptions o;
@@ -22,14 +23,18 @@ CsvReadOptions threeColumns() {
   return o;
 }
 
-class CsvLog : public ::testing::Test {
+class CsvReading : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = ident_test::tempDir(::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = std::filesystem::path(::testing::TempDir()) /
+           (std::string("geaware_csv_reader_") +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
   }
   std::filesystem::path file(const std::string& text) {
     const auto f = dir_ / "log.csv";
-    ident_test::writeText(f, text);
+    std::ofstream(f, std::ios::binary) << text;
     return f;
   }
   /// Reads `text` and expects a CsvError at `line`, `column`, with `fragment` in the message.
@@ -52,7 +57,7 @@ class CsvLog : public ::testing::Test {
   std::filesystem::path dir_;
 };
 
-TEST_F(CsvLog, ReadsTheRequestedColumnsInTheRequestedOrder) {
+TEST_F(CsvReading, ReadsTheRequestedColumnsInTheRequestedOrder) {
   // A comment and a blank line before the header, an unused column, spaces, a '+', CRLF and no
   // final newline.
   const auto t = readCsv(file("# rig v1\n\nt_s, a ,skip,b\r\n0, 1.5,x,+2\r\n0.1,-3e-1,y, 4\r\n0.2,2,z,6"),
@@ -65,7 +70,7 @@ TEST_F(CsvLog, ReadsTheRequestedColumnsInTheRequestedOrder) {
   EXPECT_THROW((void)t.column("skip"), std::out_of_range);
 }
 
-TEST_F(CsvLog, SmallBuffersGrowForLongLines) {
+TEST_F(CsvReading, SmallBuffersGrowForLongLines) {
   std::string text = "t_s,a,b," + std::string(300, 'x') + "\n";
   for (int i = 0; i < 100; ++i) text += std::to_string(i) + ",1,2,0\n";
   CsvReadOptions o = threeColumns();
@@ -75,8 +80,8 @@ TEST_F(CsvLog, SmallBuffersGrowForLongLines) {
   EXPECT_EQ(t.column("t_s").back(), 99.0);
 }
 
-TEST_F(CsvLog, StreamsRowByRow) {
-  geaware::ident::CsvReader reader(file("t_s,a,b\n0,1,2\n1,3,4\n"), threeColumns());
+TEST_F(CsvReading, StreamsRowByRow) {
+  geaware::io::CsvReader reader(file("t_s,a,b\n0,1,2\n1,3,4\n"), threeColumns());
   std::vector<double> row(3);
   double sum = 0.0;
   while (reader.next(row)) sum += row[2];
@@ -84,97 +89,62 @@ TEST_F(CsvLog, StreamsRowByRow) {
   EXPECT_EQ(reader.rowsRead(), 2u);
 }
 
-TEST_F(CsvLog, MissingColumnListsTheFoundOnesAndSuggestsTheMisnamedOne) {
+TEST_F(CsvReading, MissingColumnListsTheFoundOnesAndSuggestsTheMisnamedOne) {
   expectError("t_s,A,b\n0,1,2\n1,1,2\n", 1, "a", "missing column 'a' (did you mean 'A'?); found: t_s, A, b");
   expectError("t_s,b\n0,1\n1,1\n", 1, "a", "missing column 'a'; found: t_s, b");
   // A platform log with one force column misspelt: the near miss is suggested, and a column
   // that is itself requested is never suggested for another.
-  geaware::ident::CsvReadOptions o;
+  geaware::io::CsvReadOptions o;
   o.columns = {{"t_s"}, {"fz_N"}, {"ty_Nm"}, {"tz_Nm"}};
   expectError("t_s,fz_n,tz_Nm,tyNm\n0,1,2,3\n", 1, "fz_N",
               "missing columns 'fz_N' (did you mean 'fz_n'?), 'ty_Nm' (did you mean 'tyNm'?); "
               "found: t_s, fz_n, tz_Nm, tyNm", o);
 }
 
-TEST_F(CsvLog, DuplicatedHeaderName) { expectError("t_s,a,b,a\n0,1,2,3\n", 1, "a", "appears twice"); }
+TEST_F(CsvReading, DuplicatedHeaderName) { expectError("t_s,a,b,a\n0,1,2,3\n", 1, "a", "appears twice"); }
 
-TEST_F(CsvLog, NonNumericCell) { expectError("t_s,a,b\n0,1,2\n1,1.2.3,2\n", 3, "a", "expected a number, got '1.2.3'"); }
+TEST_F(CsvReading, NonNumericCell) { expectError("t_s,a,b\n0,1,2\n1,1.2.3,2\n", 3, "a", "expected a number, got '1.2.3'"); }
 
-TEST_F(CsvLog, EmptyCell) { expectError("t_s,a,b\n0,1,2\n1,1,\n", 3, "b", "empty cell"); }
+TEST_F(CsvReading, EmptyCell) { expectError("t_s,a,b\n0,1,2\n1,1,\n", 3, "b", "empty cell"); }
 
-TEST_F(CsvLog, NaNAndInfinity) {
+TEST_F(CsvReading, NaNAndInfinity) {
   expectError("t_s,a,b\n0,1,2\n1,nan,2\n", 3, "a", "'nan' is not finite");
   expectError("t_s,a,b\n0,1,2\n1,1,-inf\n", 3, "b", "'-inf' is not finite");
   expectError("t_s,a,b\n0,1,2\n1,1,1e999\n", 3, "b", "out of the range of a double");
 }
 
-TEST_F(CsvLog, ValueOutsideTheColumnsRange) {
+TEST_F(CsvReading, ValueOutsideTheColumnsRange) {
   expectError("t_s,a,b\n0,1,2\n1,50,2\n", 3, "a", "value 50 is outside the plausible range [-10, 10]");
 }
 
-TEST_F(CsvLog, DuplicatedTimestamp) {
+TEST_F(CsvReading, DuplicatedTimestamp) {
   expectError("t_s,a,b\n0,1,2\n0.5,1,2\n0.5,1,2\n", 4, "t_s", "duplicated timestamp 0.5 (also on line 3)");
 }
 
-TEST_F(CsvLog, DecreasingTimestamp) {
+TEST_F(CsvReading, DecreasingTimestamp) {
   expectError("t_s,a,b\n0,1,2\n0.5,1,2\n0.4,1,2\n", 4, "t_s", "timestamp 0.4 is earlier than 0.5 on line 3");
 }
 
-TEST_F(CsvLog, TooFewRows) {
+TEST_F(CsvReading, TooFewRows) {
   CsvReadOptions o = threeColumns();
   o.min_rows = 3;
   expectError("t_s,a,b\n0,1,2\n1,1,2\n", 3, "", "only 2 data rows, at least 3 are needed", o);
 }
 
-TEST_F(CsvLog, WrongCellCount) {
+TEST_F(CsvReading, WrongCellCount) {
   expectError("t_s,a,b\n0,1,2\n1,1\n", 3, "b", "row has 2 cells, the header 3");
   expectError("t_s,a,b\n0,1,2\n1,1,2,3\n", 3, "", "more cells than the header's 3");
 }
 
-TEST_F(CsvLog, EmptyLineInsideTheData) { expectError("t_s,a,b\n0,1,2\n\n1,1,2\n", 3, "", "empty line inside the data"); }
+TEST_F(CsvReading, EmptyLineInsideTheData) { expectError("t_s,a,b\n0,1,2\n\n1,1,2\n", 3, "", "empty line inside the data"); }
 
-TEST_F(CsvLog, EmptyFileAndMissingFile) {
+TEST_F(CsvReading, EmptyFileAndMissingFile) {
   expectError("", 0, "", "no header line");
   try {
     (void)readCsv(dir_ / "nothere.csv", threeColumns());
     ADD_FAILURE();
   } catch (const CsvError& e) {
     EXPECT_NE(std::string(e.what()).find("nothere.csv: cannot open"), std::string::npos) << e.what();
-  }
-}
-
-TEST_F(CsvLog, RigReadersCheckUnitsByRange) {
-  // A height logged in millimetres.
-  const auto f = file(
-      "t_s,h_m,tilt_deg,n1_rpm,n2_rpm,n3_rpm,n4_rpm,fx_N,fy_N,fz_N,tx_Nm,ty_Nm,tz_Nm\n"
-      "0,120,0,1,1,1,1,0,0,1,0,0,0\n");
-  try {
-    (void)geaware::ident::readPlatformLog(f);
-    ADD_FAILURE();
-  } catch (const CsvError& e) {
-    EXPECT_EQ(e.line(), 2u);
-    EXPECT_EQ(e.column(), "h_m");
-  }
-  // Configurable names.
-  geaware::ident::RotorStandColumns c;
-  c.rpm = "speed";
-  const auto g = file("t_s,throttle,speed,thrust_N,torque_Nm\n0,0.1,5000,1,0.01\n1,0.2,6000,1.4,0.02\n");
-  const auto log = geaware::ident::readRotorStandLog(g, c);
-  EXPECT_EQ(log.rpm, (std::vector<double>{5000.0, 6000.0}));
-}
-
-TEST_F(CsvLog, PlatformRoundTripThroughAFile) {
-  ident_test::PlatformSpec spec;
-  spec.level_samples = 500;
-  spec.tilted_samples = 500;
-  const auto log = ident_test::syntheticPlatform(spec, 3);
-  const auto f = dir_ / "platform.csv";
-  ident_test::writePlatformCsv(f, log);
-  const auto back = geaware::ident::readPlatformLog(f);
-  ASSERT_EQ(back.size(), log.size());
-  for (std::size_t i = 0; i < log.size(); i += 97) {
-    EXPECT_NEAR(back.f_N[2][i], log.f_N[2][i], 1e-9 * std::abs(log.f_N[2][i]));
-    EXPECT_NEAR(back.n_rpm[3][i], log.n_rpm[3][i], 1e-6);
   }
 }
 

@@ -1,4 +1,4 @@
-#include "geaware/ident/csv_log.hpp"
+#include "geaware/io/csv_reader.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -9,7 +9,7 @@
 #include <optional>
 #include <sstream>
 
-namespace geaware::ident {
+namespace geaware::io {
 
 namespace {
 
@@ -362,4 +362,4 @@ CsvTable readCsv(const std::filesystem::path& file, const CsvReadOptions& option
   return table;
 }
 
-}  // namespace geaware::ident
+}  // namespace geaware::io

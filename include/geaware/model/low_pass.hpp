@@ -1,15 +1,16 @@
 #pragma once
 // Second-order Butterworth low-pass filter on fixed-size vectors (bilinear transform with
-// pre-warping), the one filter type of the controller: incremental inversion needs the filtered
-// angular acceleration ω̇_f and the filtered rotor torque τ̂_B to be delayed alike, so both use
-// one instance type with one cut-off (Smeur et al. 2016; Tal & Karaman 2020).
+// pre-warping), the one filter type of the controller and the disturbance observer: incremental
+// inversion needs the filtered angular acceleration ω̇_f and the filtered rotor torque τ̂_B to be
+// delayed alike, so both use one instance type with one cut-off (Smeur et al. 2016; Tal &
+// Karaman 2020).
 
 #include <cmath>
 #include <numbers>
 
 #include <Eigen/Core>
 
-namespace geaware::control {
+namespace geaware::model {
 
 template <int N>
 class LowPass2 {
@@ -54,4 +55,4 @@ class LowPass2 {
   bool initialised_ = false;
 };
 
-}  // namespace geaware::control
+}  // namespace geaware::model

@@ -1,5 +1,5 @@
-// The controller's one filter type: a second-order Butterworth low-pass.
-#include "geaware/control/low_pass.hpp"
+// The filter type of the controller and the disturbance observer: a second-order Butterworth low-pass.
+#include "geaware/model/low_pass.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -8,7 +8,7 @@
 
 namespace {
 
-using geaware::control::LowPass2;
+using geaware::model::LowPass2;
 using Vec1 = Eigen::Matrix<double, 1, 1>;
 
 /// Steady-state amplitude of the filter's response to a sine at f_hz.

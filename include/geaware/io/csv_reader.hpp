@@ -22,7 +22,7 @@
 #include <string_view>
 #include <vector>
 
-namespace geaware::ident {
+namespace geaware::io {
 
 /// A problem in a log file. what() is "FILE:LINE: column 'NAME': MESSAGE" (the line and the
 /// column are left out when they do not apply).
@@ -103,4 +103,4 @@ struct CsvTable {
 /// Reads the requested columns of a whole log in one pass. Throws CsvError.
 [[nodiscard]] CsvTable readCsv(const std::filesystem::path& file, const CsvReadOptions& options);
 
-}  // namespace geaware::ident
+}  // namespace geaware::io

@@ -1,0 +1,5 @@
+// Wall probe: the estimator must not compile against the controller's headers (it depends on
+// model/ only: the state estimate and the low-pass filter live there).
+#include <geaware/control/controller.hpp>
+#include <geaware/estimation/eskf.hpp>
+int wallProbe() { return 0; }
