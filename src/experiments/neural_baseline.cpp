@@ -11,12 +11,15 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <string_view>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "geaware/experiments/flight_pool.hpp"
 #include "geaware/experiments/flight_series.hpp"
 #include "geaware/model/rotor_drag.hpp"
+#include "geaware/model/vehicle_schema.hpp"
 #include "geaware/neural/weights_file.hpp"
 #include "geaware/sim/rigs.hpp"
 #include "geaware/traj/lemniscate.hpp"
@@ -67,35 +70,19 @@ class TrainingRows final : public FlightObserver {
 
 std::string num(double v) { return fmt::format("{}", v); }
 
+/// One line per vehicle parameter in use (model/vehicle_schema.hpp), "<p>.<key> = <values>":
+/// every number the controller-side model is built from, the name aside.
 void vehicleLines(std::string& k, const std::string& p, const model::VehicleParams& v) {
-  k += fmt::format("{}.mass_kg = {}\n{}.inertia_kgm2 = {} {} {}\n", p, num(v.mass_kg), p,
-                   num(v.inertia_kgm2.x()), num(v.inertia_kgm2.y()), num(v.inertia_kgm2.z()));
-  k += fmt::format("{}.geometry = {} {} {}\n", p, num(v.diagonal_rotor_distance_m),
-                   num(v.propeller_radius_m), num(v.min_rotor_plane_height_m));
-  k += fmt::format("{}.rotor = {} {} {} {} {}\n", p, num(v.rotor.k_T_N_per_rpm2),
-                   num(v.rotor.k_TX_N_per_rpm2), num(v.rotor.k_TY_N_per_rpm2),
-                   num(v.rotor.k_I_Nm_per_rpm2), num(v.rotor.J_R_kgm2));
-  k += fmt::format("{}.throttle = {} {} {}\n", p, num(v.throttle.c2_rpm2), num(v.throttle.c1_rpm2),
-                   num(v.throttle.c0_rpm2));
-  k += fmt::format("{}.additional_thrust = {} {}\n", p, num(v.additional_thrust.g1_m2),
-                   num(v.additional_thrust.g2_m2));
-  k += fmt::format("{}.leveling_torque = {} {} {}\n", p, num(v.leveling_torque.g3_m),
-                   num(v.leveling_torque.g4_m2), num(v.leveling_torque.scale_m4));
-  // Tables replace the formulas above when given.
-  for (const auto* t : {&v.additional_thrust.table, &v.leveling_torque.table}) {
-    if (t->empty()) continue;
-    k += p + (t == &v.additional_thrust.table ? ".additional_thrust.table =" : ".leveling_torque.table =");
-    for (std::size_t i = 0; i < t->heights_m.size(); ++i) {
-      k += fmt::format(" ({} {})", num(t->heights_m[i]), num(t->values[i]));
+  model::forEachParameter(v, [&](std::string_view key, std::string_view, const auto& value) {
+    using V = std::decay_t<decltype(value)>;
+    if constexpr (std::is_same_v<V, double>) {
+      k += fmt::format("{}.{} = {}\n", p, key, num(value));
+    } else if constexpr (std::is_same_v<V, std::vector<double>>) {
+      k += fmt::format("{}.{} =", p, key);
+      for (const double x : value) k += " " + num(x);
+      k += "\n";
     }
-    k += "\n";
-  }
-  k += p + ".drag =";
-  for (std::size_t i = 0; i < v.drag.heights_m.size(); ++i) {
-    k += fmt::format(" ({} {} {})", num(v.drag.heights_m[i]), num(v.drag.d_x_N_per_mps[i]),
-                     num(v.drag.d_y_N_per_mps[i]));
-  }
-  k += "\n";
+  });
 }
 
 /// The truth as far as it shapes the collected data: its scalar parameters and a fingerprint of

@@ -5,96 +5,15 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "geaware/io/format_version.hpp"
+#include "geaware/io/param_reader.hpp"
 #include "geaware/io/yaml_reader.hpp"
+#include "geaware/model/vehicle_schema.hpp"
 
 namespace geaware::io {
 namespace detail {
 extern const std::string_view kBuiltinVehicleYaml;
 }  // namespace detail
-
-namespace {
-
-/// A curve given as `table: {heights_m: [...], <values_key>: [...]}` instead of the formula's
-/// keys. Returns false when the section has no table (the caller reads the formula). A table
-/// next to the formula's keys is a problem: one of them would be silently ignored.
-bool readHeightTable(MapReader& section, const std::string& values_key,
-                     const std::vector<std::string>& formula_keys, model::HeightTableParams& out) {
-  if (!section.has("table")) return false;
-  auto t = section.map("table");
-  out.heights_m = t.numbers("heights_m");
-  out.values = t.numbers(values_key);
-  t.rejectUnknownKeys();
-  for (const auto& k : formula_keys) {
-    if (section.has(k)) {
-      (void)section.number(k);  // read, so it is reported once, here, not as unknown
-      section.problem(k, "is not used when the curve is given as a table: give either " +
-                             std::string("the formula's keys or 'table', not both"));
-    }
-  }
-  return true;
-}
-
-model::VehicleParams readVehicle(MapReader& root) {
-  model::VehicleParams p;
-  p.name = root.text("name");
-  p.mass_kg = root.number("mass_kg");
-  {
-    auto m = root.map("inertia_kgm2");
-    p.inertia_kgm2 = {m.number("xx"), m.number("yy"), m.number("zz")};
-    m.rejectUnknownKeys();
-  }
-  {
-    auto m = root.map("geometry");
-    p.diagonal_rotor_distance_m = m.number("diagonal_rotor_distance_m");
-    p.propeller_radius_m = m.number("propeller_radius_m");
-    p.min_rotor_plane_height_m = m.number("min_rotor_plane_height_m");
-    m.rejectUnknownKeys();
-  }
-  {
-    auto m = root.map("rotor");
-    p.rotor.k_T_N_per_rpm2 = m.number("k_T_N_per_rpm2");
-    p.rotor.k_TX_N_per_rpm2 = m.number("k_TX_N_per_rpm2");
-    p.rotor.k_TY_N_per_rpm2 = m.number("k_TY_N_per_rpm2");
-    p.rotor.k_I_Nm_per_rpm2 = m.number("k_I_Nm_per_rpm2");
-    p.rotor.J_R_kgm2 = m.number("J_R_kgm2");
-    m.rejectUnknownKeys();
-  }
-  {
-    auto m = root.map("throttle_curve");
-    p.throttle.c2_rpm2 = m.number("c2_rpm2");
-    p.throttle.c1_rpm2 = m.number("c1_rpm2");
-    p.throttle.c0_rpm2 = m.number("c0_rpm2");
-    m.rejectUnknownKeys();
-  }
-  {
-    auto ge = root.map("ground_effect");
-    auto at = ge.map("additional_thrust");
-    if (!readHeightTable(at, "F_G", {"g1_m2", "g2_m2"}, p.additional_thrust.table)) {
-      p.additional_thrust.g1_m2 = at.number("g1_m2");
-      p.additional_thrust.g2_m2 = at.number("g2_m2");
-    }
-    at.rejectUnknownKeys();
-    auto lt = ge.map("leveling_torque");
-    if (!readHeightTable(lt, "M_G_m", {"g3_m", "g4_m2", "scale_m4"}, p.leveling_torque.table)) {
-      p.leveling_torque.g3_m = lt.number("g3_m");
-      p.leveling_torque.g4_m2 = lt.number("g4_m2");
-      p.leveling_torque.scale_m4 = lt.number("scale_m4");
-    }
-    lt.rejectUnknownKeys();
-    ge.rejectUnknownKeys();
-  }
-  {
-    auto m = root.map("drag");
-    p.drag.heights_m = m.numbers("heights_m");
-    p.drag.d_x_N_per_mps = m.numbers("d_x_N_per_mps");
-    p.drag.d_y_N_per_mps = m.numbers("d_y_N_per_mps");
-    m.rejectUnknownKeys();
-  }
-  root.rejectUnknownKeys();
-  return p;
-}
-
-}  // namespace
 
 model::VehicleParams parseVehicleYaml(std::string_view yaml_text, const std::string& source) {
   YAML::Node doc;
@@ -108,7 +27,10 @@ model::VehicleParams parseVehicleYaml(std::string_view yaml_text, const std::str
   }
   YamlContext ctx;
   MapReader root(doc, "", ctx);
-  model::VehicleParams params = readVehicle(root);
+  (void)readFormatVersion(root, ctx, source);
+  model::VehicleParams params;
+  readParameters(root, model::vehicleSchema(), params);
+  root.rejectUnknownKeys();
   if (!ctx.problems.empty()) throw ConfigError(source, std::move(ctx.problems));
 
   // Physical validation, each problem reported at the line of its key.

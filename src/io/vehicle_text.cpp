@@ -5,6 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "geaware/model/vehicle_schema.hpp"
+
 namespace geaware::io::detail {
 namespace {
 
@@ -82,20 +84,26 @@ std::vector<std::string> splitPath(const std::string& key) {
 }
 
 const std::array<CurveSection, 2>& curveSections() {
-  static const std::array<CurveSection, 2> sections = {{
-      {"ground_effect.additional_thrust",
-       "additional_thrust",
-       "F_G",
-       {"g1_m2", "g2_m2"},
-       "# F_G table: PCHIP between the knots, 1/h² above (docs/vehicle-file.md)",
-       "# F_G(h) = g2/(h² + g1)"},
-      {"ground_effect.leveling_torque",
-       "leveling_torque",
-       "M_G_m",
-       {"g3_m", "g4_m2", "scale_m4"},
-       "# M_G table [m]: PCHIP between the knots, 1/h² above (docs/vehicle-file.md)",
-       "# M_G(h) = scale·h/(h² + g3·h + g4)², in N·m per N per sin δ"},
-  }};
+  // The keys come from the schema; the comments are the writer's.
+  static const std::array<CurveSection, 2> sections = [] {
+    std::array<CurveSection, 2> out = {{
+        {"ground_effect.additional_thrust", "additional_thrust", {}, {},
+         "# F_G table: PCHIP between the knots, 1/h² above (docs/vehicle-file.md)",
+         "# F_G(h) = g2/(h² + g1)"},
+        {"ground_effect.leveling_torque", "leveling_torque", {}, {},
+         "# M_G table [m]: PCHIP between the knots, 1/h² above (docs/vehicle-file.md)",
+         "# M_G(h) = scale·h/(h² + g3·h + g4)², in N·m per N per sin δ"},
+    }};
+    for (auto& c : out) {
+      for (const auto& spec : model::vehicleSchema().specs()) {
+        if (spec.curve != c.path) continue;
+        const std::string leaf(spec.key.substr(spec.key.rfind('.') + 1));
+        if (spec.form == model::ParamForm::kFormula) c.formula_keys.push_back(leaf);
+        if (spec.form == model::ParamForm::kTable && leaf != "heights_m") c.values_key = leaf;
+      }
+    }
+    return out;
+  }();
   return sections;
 }
 

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "geaware/io/vehicle_writer.hpp"
+#include "geaware/model/vehicle_schema.hpp"
 #include "vehicle_text.hpp"
 
 namespace geaware::io {
@@ -13,29 +14,22 @@ using detail::sectionByPath;
 using detail::sectionOfKey;
 
 const std::vector<std::string>& VehicleUpdate::fittedKeys() {
-  static const std::vector<std::string> keys = {
-      "rotor.k_T_N_per_rpm2",
-      "rotor.k_TX_N_per_rpm2",
-      "rotor.k_TY_N_per_rpm2",
-      "rotor.k_I_Nm_per_rpm2",
-      "rotor.J_R_kgm2",
-      "throttle_curve.c2_rpm2",
-      "throttle_curve.c1_rpm2",
-      "throttle_curve.c0_rpm2",
-      "ground_effect.additional_thrust.g1_m2",
-      "ground_effect.additional_thrust.g2_m2",
-      "ground_effect.leveling_torque.g3_m",
-      "ground_effect.leveling_torque.g4_m2",
-      "ground_effect.leveling_torque.scale_m4",
-      "drag.heights_m",
-      "drag.d_x_N_per_mps",
-      "drag.d_y_N_per_mps",
-  };
+  // The schema's fitted parameters but the ground-effect tables' columns (setTable).
+  static const std::vector<std::string> keys = [] {
+    std::vector<std::string> k;
+    for (const auto& s : model::vehicleSchema().specs()) {
+      if (s.fitted && s.form != model::ParamForm::kTable) k.emplace_back(s.key);
+    }
+    return k;
+  }();
   return keys;
 }
 
 namespace {
-bool isListKey(const std::string& key) { return key.rfind("drag.", 0) == 0; }
+bool isListKey(const std::string& key) {
+  const auto* s = model::vehicleSchema().find(key);
+  return s != nullptr && s->kind == model::ParamKind::kList && s->form == model::ParamForm::kAlways;
+}
 }  // namespace
 
 void VehicleUpdate::set(const std::string& key, double value, double std_error) {

@@ -11,6 +11,7 @@
 
 #include "geaware/io/config_error.hpp"
 #include "geaware/io/vehicle_file.hpp"
+#include "geaware/model/vehicle_schema.hpp"
 #include "vehicle_text.hpp"
 
 namespace geaware::io {
@@ -18,25 +19,12 @@ namespace {
 
 using namespace detail;
 
-/// Value read back from a parsed vehicle for a key (NaN-free lists for the drag table).
+/// Value read back from a parsed vehicle for a fitted key, by the schema's accessor.
 std::vector<double> readBack(const model::VehicleParams& p, const std::string& key) {
-  if (key == "rotor.k_T_N_per_rpm2") return {p.rotor.k_T_N_per_rpm2};
-  if (key == "rotor.k_TX_N_per_rpm2") return {p.rotor.k_TX_N_per_rpm2};
-  if (key == "rotor.k_TY_N_per_rpm2") return {p.rotor.k_TY_N_per_rpm2};
-  if (key == "rotor.k_I_Nm_per_rpm2") return {p.rotor.k_I_Nm_per_rpm2};
-  if (key == "rotor.J_R_kgm2") return {p.rotor.J_R_kgm2};
-  if (key == "throttle_curve.c2_rpm2") return {p.throttle.c2_rpm2};
-  if (key == "throttle_curve.c1_rpm2") return {p.throttle.c1_rpm2};
-  if (key == "throttle_curve.c0_rpm2") return {p.throttle.c0_rpm2};
-  if (key == "ground_effect.additional_thrust.g1_m2") return {p.additional_thrust.g1_m2};
-  if (key == "ground_effect.additional_thrust.g2_m2") return {p.additional_thrust.g2_m2};
-  if (key == "ground_effect.leveling_torque.g3_m") return {p.leveling_torque.g3_m};
-  if (key == "ground_effect.leveling_torque.g4_m2") return {p.leveling_torque.g4_m2};
-  if (key == "ground_effect.leveling_torque.scale_m4") return {p.leveling_torque.scale_m4};
-  if (key == "drag.heights_m") return p.drag.heights_m;
-  if (key == "drag.d_x_N_per_mps") return p.drag.d_x_N_per_mps;
-  if (key == "drag.d_y_N_per_mps") return p.drag.d_y_N_per_mps;
-  throw std::logic_error("readBack: unknown key " + key);
+  const auto* s = model::vehicleSchema().find(key);
+  if (s == nullptr) throw std::logic_error("readBack: unknown key " + key);
+  if (s->kind == model::ParamKind::kList) return s->listOf(p);
+  return {s->numberOf(p)};
 }
 
 YAML::Node flowList(const std::vector<double>& values) {

@@ -222,3 +222,36 @@ TEST(VehicleFileErrors, EmptyDocumentIsRejected) {
 }
 
 }  // namespace
+
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// format_version: absent is version 1, 1 is read, anything else is refused naming the versions
+
+TEST(VehicleFileFormatVersion, AbsentOrOneReadsTheSameVehicle) {
+  const auto without = io::parseVehicleYaml(builtinText(), kSource);
+  const auto with = io::parseVehicleYaml("format_version: 1\n" + builtinText(), kSource);
+  EXPECT_EQ(with.rotor.k_T_N_per_rpm2, without.rotor.k_T_N_per_rpm2);
+  EXPECT_EQ(with.name, without.name);
+}
+
+TEST(VehicleFileFormatVersion, UnknownVersionNamesFileKeyLineAndSupportedVersions) {
+  const auto e = rejection("format_version: 2\n" + builtinText());
+  ASSERT_TRUE(e.has_value());
+  ASSERT_EQ(e->problems().size(), 1u) << describe(*e);  // nothing else is read
+  EXPECT_EQ(e->problems()[0].key, "format_version");
+  EXPECT_EQ(e->problems()[0].line, 1);
+  EXPECT_NE(std::string(e->what()).find(kSource), std::string::npos);
+  EXPECT_NE(e->problems()[0].message.find("version 2"), std::string::npos);
+  EXPECT_NE(e->problems()[0].message.find("supported: 1"), std::string::npos);
+}
+
+TEST(VehicleFileFormatVersion, NonNumericVersionIsRefused) {
+  const auto e = rejection("format_version: one\n" + builtinText());
+  ASSERT_TRUE(e.has_value());
+  ASSERT_EQ(e->problems().size(), 1u) << describe(*e);
+  EXPECT_EQ(e->problems()[0].key, "format_version");
+  EXPECT_NE(e->problems()[0].message.find("supported format versions: 1"), std::string::npos);
+}
+
+}  // namespace

@@ -1,0 +1,225 @@
+#include "geaware/model/vehicle_schema.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace geaware::model {
+namespace {
+
+using P = VehicleParams;
+using S = ParamSpec<P>;
+using enum LowerBound;
+using enum ParamForm;
+
+/// Generous physical ranges: a toy micro-drone to a heavy-lift octo-sized vehicle.
+constexpr ParamRange kMass{0.0, 1000.0, kExclusive};
+constexpr ParamRange kInertia{0.0, 1000.0, kExclusive};
+constexpr ParamRange kCoefficient{0.0, 1.0, kExclusive};
+constexpr ParamRange kCurveCoefficient{-1e12, 1e12, kInclusive};
+constexpr ParamRange kKnotHeight{0.0, 100.0, kExclusive};
+
+S number(std::string_view key, std::string_view unit, ParamRange range, double& (*get)(P&),
+         bool fitted = false) {
+  S s;
+  s.key = key;
+  s.unit = unit;
+  s.range = range;
+  s.number = get;
+  s.fitted = fitted;
+  return s;
+}
+
+S fitted(std::string_view key, std::string_view unit, ParamRange range, double& (*get)(P&)) {
+  return number(key, unit, range, get, true);
+}
+
+/// A formula key of `curve`.
+S formula(std::string_view curve, std::string_view key, std::string_view unit, ParamRange range,
+          double& (*get)(P&)) {
+  S s = fitted(key, unit, range, get);
+  s.form = kFormula;
+  s.curve = curve;
+  return s;
+}
+
+/// A column of `table`; the first column of a table is its heights, strictly increasing.
+S column(std::string_view table, std::string_view key, std::string_view unit, ParamRange range,
+         std::vector<double>& (*get)(P&), std::size_t min_rows = 1) {
+  S s;
+  s.key = key;
+  s.unit = unit;
+  s.kind = ParamKind::kList;
+  s.range = range;
+  s.list = get;
+  s.table = table;
+  s.min_rows = min_rows;
+  return s;
+}
+
+/// A column of the table form of `curve` (its table is "<curve>.table").
+S curveColumn(std::string_view curve, std::string_view table, std::string_view key,
+              std::string_view unit, ParamRange range, std::vector<double>& (*get)(P&),
+              std::size_t min_rows = 1) {
+  S s = column(table, key, unit, range, get, min_rows);
+  s.form = kTable;
+  s.curve = curve;
+  return s;
+}
+
+std::vector<S> specs() {
+  S name;
+  name.key = "name";
+  name.kind = ParamKind::kText;
+  name.text = [](P& p) -> std::string& { return p.name; };
+
+  S c0 = fitted("throttle_curve.c0_rpm2", "rpm²", {0.0, 1e12, kInclusive},
+                [](P& p) -> double& { return p.throttle.c0_rpm2; });
+  c0.note = "(n² at zero throttle)";
+
+  constexpr std::string_view kThrust = "ground_effect.additional_thrust";
+  constexpr std::string_view kThrustTable = "ground_effect.additional_thrust.table";
+  constexpr std::string_view kLeveling = "ground_effect.leveling_torque";
+  constexpr std::string_view kLevelingTable = "ground_effect.leveling_torque.table";
+  // F_G > −1 keeps the thrust positive; 10 is ten times the strongest cushion on record.
+  S F_G = curveColumn(kThrust, kThrustTable, "ground_effect.additional_thrust.table.F_G", "",
+                      {-1.0, 10.0, kExclusive}, [](P& p) -> std::vector<double>& {
+                        return p.additional_thrust.table.values;
+                      });
+  F_G.note = "(dimensionless)";
+
+  std::vector<S> s = {
+      name,
+      number("mass_kg", "kg", kMass, [](P& p) -> double& { return p.mass_kg; }),
+      number("inertia_kgm2.xx", "kg·m²", kInertia, [](P& p) -> double& { return p.inertia_kgm2[0]; }),
+      number("inertia_kgm2.yy", "kg·m²", kInertia, [](P& p) -> double& { return p.inertia_kgm2[1]; }),
+      number("inertia_kgm2.zz", "kg·m²", kInertia, [](P& p) -> double& { return p.inertia_kgm2[2]; }),
+      number("geometry.diagonal_rotor_distance_m", "m", {0.0, 10.0, kExclusive},
+             [](P& p) -> double& { return p.diagonal_rotor_distance_m; }),
+      number("geometry.propeller_radius_m", "m", {0.0, 5.0, kExclusive},
+             [](P& p) -> double& { return p.propeller_radius_m; }),
+      number("geometry.min_rotor_plane_height_m", "m", {0.0, 10.0, kInclusive},
+             [](P& p) -> double& { return p.min_rotor_plane_height_m; }),
+      fitted("rotor.k_T_N_per_rpm2", "N/rpm²", kCoefficient,
+             [](P& p) -> double& { return p.rotor.k_T_N_per_rpm2; }),
+      fitted("rotor.k_TX_N_per_rpm2", "N/rpm²", kCoefficient,
+             [](P& p) -> double& { return p.rotor.k_TX_N_per_rpm2; }),
+      fitted("rotor.k_TY_N_per_rpm2", "N/rpm²", kCoefficient,
+             [](P& p) -> double& { return p.rotor.k_TY_N_per_rpm2; }),
+      fitted("rotor.k_I_Nm_per_rpm2", "N·m/rpm²", kCoefficient,
+             [](P& p) -> double& { return p.rotor.k_I_Nm_per_rpm2; }),
+      fitted("rotor.J_R_kgm2", "kg·m²", {0.0, 1.0, kInclusive},
+             [](P& p) -> double& { return p.rotor.J_R_kgm2; }),
+      fitted("throttle_curve.c2_rpm2", "rpm²", kCurveCoefficient,
+             [](P& p) -> double& { return p.throttle.c2_rpm2; }),
+      fitted("throttle_curve.c1_rpm2", "rpm²", kCurveCoefficient,
+             [](P& p) -> double& { return p.throttle.c1_rpm2; }),
+      c0,
+      formula(kThrust, "ground_effect.additional_thrust.g1_m2", "m²", {0.0, 100.0, kExclusive},
+              [](P& p) -> double& { return p.additional_thrust.g1_m2; }),
+      formula(kThrust, "ground_effect.additional_thrust.g2_m2", "m²", {0.0, 100.0, kInclusive},
+              [](P& p) -> double& { return p.additional_thrust.g2_m2; }),
+      curveColumn(kThrust, kThrustTable, "ground_effect.additional_thrust.table.heights_m", "m",
+                  kKnotHeight,
+                  [](P& p) -> std::vector<double>& { return p.additional_thrust.table.heights_m; },
+                  2),
+      F_G,
+      formula(kLeveling, "ground_effect.leveling_torque.g3_m", "m", {-100.0, 100.0, kInclusive},
+              [](P& p) -> double& { return p.leveling_torque.g3_m; }),
+      formula(kLeveling, "ground_effect.leveling_torque.g4_m2", "m²", {0.0, 100.0, kExclusive},
+              [](P& p) -> double& { return p.leveling_torque.g4_m2; }),
+      formula(kLeveling, "ground_effect.leveling_torque.scale_m4", "m⁴", {0.0, 100.0, kInclusive},
+              [](P& p) -> double& { return p.leveling_torque.scale_m4; }),
+      curveColumn(kLeveling, kLevelingTable, "ground_effect.leveling_torque.table.heights_m", "m",
+                  kKnotHeight,
+                  [](P& p) -> std::vector<double>& { return p.leveling_torque.table.heights_m; },
+                  2),
+      // |M_G| ≤ 1 m: a leveling torque of one thrust times one metre per unit sin δ is already
+      // forty times the measured peak (0.023 m).
+      curveColumn(kLeveling, kLevelingTable, "ground_effect.leveling_torque.table.M_G_m", "m",
+                  {-1.0, 1.0, kInclusive},
+                  [](P& p) -> std::vector<double>& { return p.leveling_torque.table.values; }),
+      column("drag", "drag.heights_m", "m", {0.0, 1000.0, kInclusive},
+             [](P& p) -> std::vector<double>& { return p.drag.heights_m; }),
+      column("drag", "drag.d_x_N_per_mps", "N/(m/s)", {0.0, 100.0, kInclusive},
+             [](P& p) -> std::vector<double>& { return p.drag.d_x_N_per_mps; }),
+      column("drag", "drag.d_y_N_per_mps", "N/(m/s)", {0.0, 100.0, kInclusive},
+             [](P& p) -> std::vector<double>& { return p.drag.d_y_N_per_mps; }),
+  };
+  for (auto& spec : s) {
+    if (spec.table == "drag") spec.fitted = true;
+  }
+  return s;
+}
+
+// ------------------------------------------------------------------- cross-parameter rules
+
+/// Principal moments of a real body satisfy the triangle inequalities.
+void inertiaTriangle(const P& p, FieldChecker& c) {
+  const char* axes[3] = {"inertia_kgm2.xx", "inertia_kgm2.yy", "inertia_kgm2.zz"};
+  const Eigen::Vector3d& I = p.inertia_kgm2;
+  for (int i = 0; i < 3; ++i) {
+    const double others = I[(i + 1) % 3] + I[(i + 2) % 3];
+    if (I[i] > others * (1.0 + 1e-9)) {
+      c.fail(axes[i], formatValue(I[i]),
+             "at most the sum of the other two principal moments (" + formatValue(others) +
+                 " kg·m²): no rigid body has these moments");
+    }
+  }
+}
+
+/// Adjacent rotors of an X quadrotor are b/√2 apart; their discs must not overlap.
+void propellersApart(const P& p, FieldChecker& c) {
+  const double adjacent = p.diagonal_rotor_distance_m / std::sqrt(2.0);
+  if (2.0 * p.propeller_radius_m > adjacent) {
+    c.fail("geometry.propeller_radius_m", formatValue(p.propeller_radius_m),
+           "at most half the adjacent-rotor distance b/√2 = " + formatValue(adjacent) +
+               " m, or the propellers overlap");
+  }
+}
+
+/// n² must rise strictly over the whole throttle range so that the curve can be inverted: its
+/// slope c1 + 2·c2·t is linear in t, so checking both ends suffices.
+void throttleIncreasing(const P& p, FieldChecker& c) {
+  const auto& t = p.throttle;
+  if (!(t.c1_rpm2 > 0.0 && t.c1_rpm2 + 2.0 * t.c2_rpm2 > 0.0)) {
+    c.fail("throttle_curve", "c1=" + formatValue(t.c1_rpm2) + ", c2=" + formatValue(t.c2_rpm2),
+           "n² strictly increasing on throttle [0, 1] (c1 > 0 and c1 + 2·c2 > 0)");
+  }
+}
+
+/// h² + g3·h + g4 would vanish at some h > 0 and M_G would be infinite there.
+void levelingDenominator(const P& p, FieldChecker& c) {
+  const auto& l = p.leveling_torque;
+  if (l.g3_m < 0.0 && l.g3_m * l.g3_m >= 4.0 * l.g4_m2) {
+    c.fail("ground_effect.leveling_torque", "g3=" + formatValue(l.g3_m) + ", g4=" + formatValue(l.g4_m2),
+           "h² + g3·h + g4 > 0 for every h ≥ 0 (g3 ≥ 0 or g3² < 4·g4)");
+  }
+}
+
+std::vector<ParamRule<P>> rules() {
+  return {
+      {"inertia_kgm2.zz", {"inertia_kgm2.xx", "inertia_kgm2.yy", "inertia_kgm2.zz"}, inertiaTriangle},
+      {"geometry.propeller_radius_m",
+       {"geometry.diagonal_rotor_distance_m", "geometry.propeller_radius_m"}, propellersApart},
+      {"throttle_curve.c0_rpm2",
+       {"throttle_curve.c2_rpm2", "throttle_curve.c1_rpm2", "throttle_curve.c0_rpm2"},
+       throttleIncreasing},
+      {"ground_effect.leveling_torque.scale_m4",
+       {"ground_effect.leveling_torque.g3_m", "ground_effect.leveling_torque.g4_m2"},
+       levelingDenominator},
+  };
+}
+
+}  // namespace
+
+const ParamSchema<VehicleParams>& vehicleSchema() {
+  static const ParamSchema<VehicleParams> schema(specs(), rules());
+  return schema;
+}
+
+VehicleParams mergeParameters(const VehicleParams& base, const VehicleParams& update,
+                              const std::vector<std::string>& keys) {
+  return model::mergeParameters(vehicleSchema(), base, update, keys);
+}
+
+}  // namespace geaware::model
