@@ -1,42 +1,19 @@
 #include "geaware/experiments/flight_log.hpp"
 
-#include <fmt/compile.h>
-#include <fmt/format.h>
-
-#include <cerrno>
-#include <cstring>
-#include <stdexcept>
+#include <cstdint>
 
 #include "geaware/model/units.hpp"
 
 namespace geaware::experiments {
 namespace {
 
-// Buffer of the log: rows are formatted into it and it is written out when less than
-// kRowReserve bytes are left (a row is at most ~100 numbers of ≤ 25 characters).
-constexpr std::size_t kBufferBytes = std::size_t{1} << 18;
-constexpr std::size_t kRowReserve = 8192;
-
-/// Appends numbers separated by commas at a raw pointer (the caller guarantees the space).
+/// Appends the cells of one row to the CSV writer: values as float32 text, times exactly.
 class RowWriter {
  public:
-  explicit RowWriter(char* p) noexcept : p_(p), start_(p) {}
-  /// A value as the shortest text that reads back to the same float32: 6–9 significant
-  /// digits, far below any sensor's noise, and about half the size and time of a double's.
-  void num(double v) noexcept {
-    sep();
-    p_ = fmt::format_to(p_, FMT_COMPILE("{}"), static_cast<float>(v));
-  }
-  /// A value as the shortest text that reads back to the same double (times: a float32 would
-  /// lose the 1 ms plant step after a few hours).
-  void exact(double v) noexcept {
-    sep();
-    p_ = fmt::format_to(p_, FMT_COMPILE("{}"), v);
-  }
-  void integer(std::uint64_t v) noexcept {
-    sep();
-    p_ = fmt::format_to(p_, FMT_COMPILE("{}"), v);
-  }
+  explicit RowWriter(io::CsvWriter& csv) noexcept : csv_(csv) {}
+  void num(double v) noexcept { csv_.single(v); }
+  void exact(double v) noexcept { csv_.exact(v); }
+  void integer(std::uint64_t v) noexcept { csv_.integer(v); }
   void vec3(const Eigen::Vector3d& v) noexcept {
     num(v.x());
     num(v.y());
@@ -48,17 +25,10 @@ class RowWriter {
     num(q.y());
     num(q.z());
   }
-  void end() noexcept { *p_++ = '\n'; }
-  [[nodiscard]] std::size_t size() const noexcept { return static_cast<std::size_t>(p_ - start_); }
-  [[nodiscard]] int fields() const noexcept { return fields_; }
+  void end() noexcept { csv_.endRow(); }
 
  private:
-  void sep() noexcept {
-    if (fields_++ > 0) *p_++ = ',';
-  }
-  char* p_;
-  char* start_;
-  int fields_ = 0;
+  io::CsvWriter& csv_;
 };
 
 }  // namespace
@@ -96,36 +66,12 @@ const std::vector<std::string_view>& flightLogColumns() {
 }
 
 CsvFlightLog::CsvFlightLog(const std::filesystem::path& file)
-    : path_(file), file_(std::fopen(file.c_str(), "wb")) {
-  if (file_ == nullptr) {
-    throw std::runtime_error(file.string() + ": cannot open for writing (" + std::strerror(errno) +
-                             ")");
-  }
-  buffer_.resize(kBufferBytes);
-  std::string header;
-  for (std::string_view c : flightLogColumns()) {
-    if (!header.empty()) header += ',';
-    header += c;
-  }
-  header += '\n';
-  std::memcpy(buffer_.data(), header.data(), header.size());
-  used_ = header.size();
-}
+    : path_(file), csv_(file, flightLogColumns()) {}
 
-CsvFlightLog::~CsvFlightLog() {
-  if (file_ != nullptr) std::fclose(file_);
-}
-
-void CsvFlightLog::flush() noexcept {
-  if (used_ == 0 || file_ == nullptr) return;
-  if (std::fwrite(buffer_.data(), 1, used_, file_) != used_) failed_ = true;
-  used_ = 0;
-}
+CsvFlightLog::~CsvFlightLog() = default;
 
 void CsvFlightLog::onTick(const FlightTick& k) noexcept {
-  if (file_ == nullptr) return;
-  if (buffer_.size() - used_ < kRowReserve) flush();
-  RowWriter w(buffer_.data() + used_);
+  RowWriter w(csv_);
   const control::ControllerInput& in = k.input;
   const control::ControllerOutput& out = k.output;
   const traj::FlatOutput& ref = in.reference;
@@ -167,19 +113,10 @@ void CsvFlightLog::onTick(const FlightTick& k) noexcept {
   for (double t : k.throttle) w.num(t);
   w.integer(out.flags);
   w.end();
-  used_ += w.size();
-  ++rows_;
 }
 
 void CsvFlightLog::finish(const FlightResult& /*result*/) { close(); }
 
-void CsvFlightLog::close() {
-  if (file_ == nullptr) return;
-  flush();
-  const bool bad = failed_ || std::ferror(file_) != 0;
-  const int rc = std::fclose(file_);
-  file_ = nullptr;
-  if (bad || rc != 0) throw std::runtime_error(path_.string() + ": write failed");
-}
+void CsvFlightLog::close() { csv_.close(); }
 
 }  // namespace geaware::experiments

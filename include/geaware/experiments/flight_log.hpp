@@ -1,6 +1,6 @@
 #pragma once
-// The flight log: one CSV row per control tick, streamed through a fixed buffer (the whole log
-// is never held in memory), with every stage of the data path — reference, estimate, truth,
+// The flight log: one CSV row per control tick, streamed through io::CsvWriter's fixed buffer
+// (the whole log is never held in memory), with every stage of the data path — reference, estimate, truth,
 // heights, commands, torques, rotor speeds, throttles, flags — in columns whose names carry
 // their units, so a plotting tool opens the file directly (pandas.read_csv, gnuplot, a
 // spreadsheet). The column list is flightLogColumns(); docs/closed-loop.md describes each.
@@ -9,13 +9,13 @@
 // than any sensor's noise, and half the size and formatting time of doubles). The same flight
 // gives a byte-identical file.
 
-#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "geaware/experiments/flight.hpp"
+#include "geaware/io/csv_writer.hpp"
 
 namespace geaware::experiments {
 
@@ -39,18 +39,12 @@ class CsvFlightLog final : public FlightObserver {
   void finish(const FlightResult& result) override;
   void close();
 
-  [[nodiscard]] std::size_t rows() const noexcept { return rows_; }
+  [[nodiscard]] std::size_t rows() const noexcept { return csv_.rows(); }
   [[nodiscard]] const std::filesystem::path& path() const noexcept { return path_; }
 
  private:
-  void flush() noexcept;
-
   std::filesystem::path path_;
-  std::FILE* file_ = nullptr;
-  std::vector<char> buffer_;  // reserved once; rows are appended, flushed when near capacity
-  std::size_t used_ = 0;
-  std::size_t rows_ = 0;
-  bool failed_ = false;
+  io::CsvWriter csv_;  // buffered; rows are formatted into its fixed buffer
 };
 
 }  // namespace geaware::experiments
