@@ -3,6 +3,7 @@
 // function that runs it; the work itself lives in the libraries.
 
 #include <functional>
+#include <stdexcept>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -10,6 +11,13 @@
 namespace geaware::cli {
 
 using Runner = std::function<int()>;
+
+/// A usage error found after parsing (a combination of options CLI11 cannot express): main
+/// prints it and exits with status 2.
+class UsageError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
 
 /// The command line this process was started with, shell-quoted (for the provenance of every
 /// output); set once by main before any command runs.

@@ -9,7 +9,7 @@
 
 #include <fmt/format.h>
 
-#include "geaware/ident/fits.hpp"
+#include "geaware/ident/identify.hpp"
 #include "geaware/model/ground_effect.hpp"
 #include "geaware/ident/rig_logs.hpp"
 #include "geaware/model/units.hpp"
@@ -77,22 +77,26 @@ CalibrationSweeps CalibrationSweeps::defaults() {
   return s;
 }
 
-ControllerCalibration calibrateController(const model::VehicleParams& file_vehicle,
-                                          const sim::TruthParams& truth,
-                                          const CalibrationSweeps& sweeps) {
-  ControllerCalibration c;
-  const sim::RotorGeometry geometry = truth.rotorGeometry();
-  const sim::ForceTorquePlatform rig(geometry, truth.aero, sweeps.platform);
+namespace {
 
-  // The rigs' logs, in memory in the readers' format (no CSV round trip: the readers' checks
-  // are for files from the outside; these rows come straight from the simulator).
+/// The rigs' logs, in memory in the readers' format (no CSV round trip: the readers' checks
+/// are for files from the outside; these rows come straight from the simulator).
+struct RigLogs {
   ident::PlatformLog platform;
-  platform.source = "virtual quadrotor platform (campaign calibration)";
-  c.platform_rows += appendSweep(rig, sweeps.level, 10 + sweeps.seed, platform);
-  c.platform_rows += appendSweep(rig, sweeps.tilted, 20 + sweeps.seed, platform);
-  c.platform_rows += appendSweep(rig, sweeps.mixing, 30 + sweeps.seed, platform);
+  ident::RotorStandLog stand;
+};
 
-  ident::RotorStandLog stand_log;
+/// Step 1: the platform's three sweeps and the stand's throttle steps on the truth.
+RigLogs runRigs(const model::VehicleParams& file_vehicle, const sim::TruthParams& truth,
+                const CalibrationSweeps& sweeps, ControllerCalibration& c) {
+  RigLogs logs;
+  const sim::ForceTorquePlatform rig(truth.rotorGeometry(), truth.aero, sweeps.platform);
+  logs.platform.source = "virtual quadrotor platform (campaign calibration)";
+  c.platform_rows += appendSweep(rig, sweeps.level, 10 + sweeps.seed, logs.platform);
+  c.platform_rows += appendSweep(rig, sweeps.tilted, 20 + sweeps.seed, logs.platform);
+  c.platform_rows += appendSweep(rig, sweeps.mixing, 30 + sweeps.seed, logs.platform);
+
+  ident::RotorStandLog& stand_log = logs.stand;
   stand_log.source = "virtual single-rotor stand (campaign calibration)";
   const sim::RotorStand stand(standVehicle(file_vehicle, truth), sweeps.stand);
   c.stand_rows = stand.sweep(sweeps.stand_throttles, 40 + sweeps.seed,
@@ -103,41 +107,45 @@ ControllerCalibration calibrateController(const model::VehicleParams& file_vehic
                                stand_log.thrust_N.push_back(r.thrust_N);
                                stand_log.torque_Nm.push_back(r.torque_Nm);
                              });
+  return logs;
+}
 
-  // The fits, with their default options (the tilt limit aside, see the sweeps).
-  const ident::RotorFit rotor = ident::fitRotorStand(stand_log);
-  const ident::MixingFit mixing = ident::fitMixing(platform, file_vehicle.diagonal_rotor_distance_m);
-  const double k_TY = mixing.k_TY_N_per_rpm2 ? mixing.k_TY_N_per_rpm2->value
-                                             : file_vehicle.rotor.k_TY_N_per_rpm2;
-  ident::LevelingFitOptions lo;
-  lo.max_tilt_deg = sweeps.tilt_limit_deg;
-  const double b = file_vehicle.diagonal_rotor_distance_m;
-  // F_G and M_G in the chosen form; the other form's results stay empty.
-  std::optional<ident::AdditionalThrustFit> thrust;
-  std::optional<ident::LevelingFit> leveling;
-  std::optional<ident::AdditionalThrustTableFit> thrust_table;
-  std::optional<ident::LevelingTableFit> leveling_table;
-  ident::Estimate k_T;
-  if (sweeps.tables) {
-    thrust_table = ident::fitAdditionalThrustTable(platform);
-    k_T = thrust_table->k_T_N_per_rpm2;
-    leveling_table = ident::fitLevelingTable(platform, {k_T.value, k_TY, b}, lo);
-    for (const auto* w : {&thrust_table->warnings, &leveling_table->warnings}) {
-      c.warnings.insert(c.warnings.end(), w->begin(), w->end());
-    }
-  } else {
-    thrust = ident::fitAdditionalThrust(platform);
-    k_T = thrust->k_T_N_per_rpm2;
-    leveling = ident::fitLeveling(platform, {k_T.value, k_TY, b}, lo);
-    for (const auto* w : {&thrust->warnings, &leveling->warnings}) {
-      c.warnings.insert(c.warnings.end(), w->begin(), w->end());
-    }
-  }
-  for (const auto* w : {&rotor.warnings, &mixing.warnings}) {
-    c.warnings.insert(c.warnings.end(), w->begin(), w->end());
-  }
+/// Step 2: the identification of both logs, with the default options (the tilt limit and the
+/// curve form aside, see the sweeps), as `geaware identify rotor|platform` does it.
+struct Identified {
+  ident::IdentifyResult rotor;
+  ident::IdentifyResult platform;
+};
 
-  // Merge: stand first, then the platform (docs/identification.md, "Commands").
+Identified identifyOnRigs(const RigLogs& logs, const model::VehicleParams& file_vehicle,
+                          const CalibrationSweeps& sweeps, ControllerCalibration& c) {
+  ident::IdentifyOptions options;
+  options.tilt_limit_deg = sweeps.tilt_limit_deg;
+  if (sweeps.tables) options.ground_effect = ident::CurveForm::kTable;
+  Identified id{ident::identifyRotorStand(logs.stand, options),
+                ident::identifyPlatform(logs.platform, file_vehicle, options)};
+  const ident::Fits& f = id.platform.fits;
+  // The fits' warnings in the order the calibration has always listed them.
+  using Warnings = const std::vector<std::string>*;
+  const std::initializer_list<Warnings> warnings{
+      f.additional_thrust ? &f.additional_thrust->warnings : nullptr,
+      f.additional_thrust_table ? &f.additional_thrust_table->warnings : nullptr,
+      f.leveling ? &f.leveling->warnings : nullptr,
+      f.leveling_table ? &f.leveling_table->warnings : nullptr,
+      &id.rotor.fits.rotor->warnings, &f.mixing->warnings};
+  for (const Warnings w : warnings) {
+    if (w != nullptr) c.warnings.insert(c.warnings.end(), w->begin(), w->end());
+  }
+  return id;
+}
+
+/// Step 3: the merge into the vehicle file's parameters, stand first, then the platform
+/// (docs/identification.md, "Commands"); every merged value is listed in c.parameters.
+model::VehicleParams mergeIdentified(const model::VehicleParams& file_vehicle, const Identified& id,
+                                     ControllerCalibration& c) {
+  const ident::RotorFit& rotor = *id.rotor.fits.rotor;
+  const ident::Fits& f = id.platform.fits;
+  const ident::MixingFit& mixing = *f.mixing;
   model::VehicleParams v = file_vehicle;
   auto set = [&](const std::string& key, const std::string& unit, const std::string& source,
                  double& field, const ident::Estimate& e) {
@@ -158,7 +166,9 @@ ControllerCalibration calibrateController(const model::VehicleParams& file_vehic
   set("throttle_curve.c2_rpm2", "rpm²", kStand, v.throttle.c2_rpm2, rotor.c2_rpm2);
   set("throttle_curve.c1_rpm2", "rpm²", kStand, v.throttle.c1_rpm2, rotor.c1_rpm2);
   set("throttle_curve.c0_rpm2", "rpm²", kStand, v.throttle.c0_rpm2, rotor.c0_rpm2);
-  set("rotor.k_T_N_per_rpm2", "N/rpm²", kLevel, v.rotor.k_T_N_per_rpm2, k_T);
+  set("rotor.k_T_N_per_rpm2", "N/rpm²", kLevel, v.rotor.k_T_N_per_rpm2,
+      f.additional_thrust ? f.additional_thrust->k_T_N_per_rpm2
+                          : f.additional_thrust_table->k_T_N_per_rpm2);
   // A table: one row per knot, the file's value being the file's curve at that height.
   const model::GroundEffectModel file_ge(file_vehicle);
   auto setTable = [&](const std::string& name, const std::string& unit, const std::string& source,
@@ -173,43 +183,32 @@ ControllerCalibration calibrateController(const model::VehicleParams& file_vehic
       field.values.push_back(curve.values[j].value);
     }
   };
-  if (thrust) {
-    set("ground_effect.additional_thrust.g1_m2", "m²", kLevel, v.additional_thrust.g1_m2,
-        thrust->g1_m2);
-    set("ground_effect.additional_thrust.g2_m2", "m²", kLevel, v.additional_thrust.g2_m2,
-        thrust->g2_m2);
+  if (const auto& t = f.additional_thrust) {
+    set("ground_effect.additional_thrust.g1_m2", "m²", kLevel, v.additional_thrust.g1_m2, t->g1_m2);
+    set("ground_effect.additional_thrust.g2_m2", "m²", kLevel, v.additional_thrust.g2_m2, t->g2_m2);
   } else {
-    setTable("F_G", "-", kLevel, thrust_table->F_G, v.additional_thrust.table, true);
+    setTable("F_G", "-", kLevel, f.additional_thrust_table->F_G, v.additional_thrust.table, true);
   }
-  if (mixing.k_TX_N_per_rpm2) {
-    set("rotor.k_TX_N_per_rpm2", "N/rpm²", kMix, v.rotor.k_TX_N_per_rpm2, *mixing.k_TX_N_per_rpm2);
-  }
-  if (mixing.k_TY_N_per_rpm2) {
-    set("rotor.k_TY_N_per_rpm2", "N/rpm²", kMix, v.rotor.k_TY_N_per_rpm2, *mixing.k_TY_N_per_rpm2);
-  }
-  if (mixing.k_I_Nm_per_rpm2) {
-    set("rotor.k_I_Nm_per_rpm2", "N·m/rpm²", kMix, v.rotor.k_I_Nm_per_rpm2,
-        *mixing.k_I_Nm_per_rpm2);
-  }
-  if (leveling) {
-    set("ground_effect.leveling_torque.g3_m", "m", kTilt, v.leveling_torque.g3_m, leveling->g3_m);
-    set("ground_effect.leveling_torque.g4_m2", "m²", kTilt, v.leveling_torque.g4_m2,
-        leveling->g4_m2);
-    set("ground_effect.leveling_torque.scale_m4", "m⁴", kTilt, v.leveling_torque.scale_m4,
-        leveling->scale_m4);
+  if (const auto& e = mixing.k_TX_N_per_rpm2) set("rotor.k_TX_N_per_rpm2", "N/rpm²", kMix, v.rotor.k_TX_N_per_rpm2, *e);
+  if (const auto& e = mixing.k_TY_N_per_rpm2) set("rotor.k_TY_N_per_rpm2", "N/rpm²", kMix, v.rotor.k_TY_N_per_rpm2, *e);
+  if (const auto& e = mixing.k_I_Nm_per_rpm2) set("rotor.k_I_Nm_per_rpm2", "N·m/rpm²", kMix, v.rotor.k_I_Nm_per_rpm2, *e);
+  if (const auto& l = f.leveling) {
+    set("ground_effect.leveling_torque.g3_m", "m", kTilt, v.leveling_torque.g3_m, l->g3_m);
+    set("ground_effect.leveling_torque.g4_m2", "m²", kTilt, v.leveling_torque.g4_m2, l->g4_m2);
+    set("ground_effect.leveling_torque.scale_m4", "m⁴", kTilt, v.leveling_torque.scale_m4, l->scale_m4);
   } else {
-    setTable("M_G", "m", kTilt, leveling_table->M_G, v.leveling_torque.table, false);
+    setTable("M_G", "m", kTilt, f.leveling_table->M_G, v.leveling_torque.table, false);
   }
   v.name = file_vehicle.name + " (identified on the virtual rigs)";
-  if (const auto errors = v.validate(); !errors.empty()) {
-    std::string what = "calibration: the identified parameters are not a valid vehicle:";
-    for (const auto& e : errors) what += "\n  " + e.field + " = " + e.value + ": " + e.expected;
-    throw std::invalid_argument(what);
-  }
-  c.vehicle = v;
+  return v;
+}
 
-  // The curves against the noise-free truth (as `geaware rig calibrate` and the round-trip
-  // test compute it).
+/// Step 4: the identified and the file's curves against the noise-free truth (as `geaware rig
+/// calibrate` and the round-trip test compute it).
+void compareCurves(const model::VehicleParams& file_vehicle, const sim::TruthParams& truth,
+                   const CalibrationSweeps& sweeps, ControllerCalibration& c) {
+  const model::VehicleParams& v = c.vehicle;
+  const sim::RotorGeometry geometry = truth.rotorGeometry();
   sim::PlatformParams quiet = sweeps.platform;
   quiet.force_noise_N = 0.0;
   quiet.torque_noise_Nm = 0.0;
@@ -240,6 +239,23 @@ ControllerCalibration calibrateController(const model::VehicleParams& file_vehic
     c.leveling_torque.push_back(
         {h, truth_tau, torque(ge_fit, v, h), torque(ge_file, file_vehicle, h)});
   }
+}
+
+}  // namespace
+
+ControllerCalibration calibrateController(const model::VehicleParams& file_vehicle,
+                                          const sim::TruthParams& truth,
+                                          const CalibrationSweeps& sweeps) {
+  ControllerCalibration c;
+  const RigLogs logs = runRigs(file_vehicle, truth, sweeps, c);
+  const Identified identified = identifyOnRigs(logs, file_vehicle, sweeps, c);
+  c.vehicle = mergeIdentified(file_vehicle, identified, c);
+  if (const auto errors = c.vehicle.validate(); !errors.empty()) {
+    std::string what = "calibration: the identified parameters are not a valid vehicle:";
+    for (const auto& e : errors) what += "\n  " + e.field + " = " + e.value + ": " + e.expected;
+    throw std::invalid_argument(what);
+  }
+  compareCurves(file_vehicle, truth, sweeps, c);
   return c;
 }
 

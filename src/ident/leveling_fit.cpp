@@ -47,6 +47,26 @@ struct TiltedSamples {
   std::size_t beyond = 0;  ///< samples left out above the tilt limit
 };
 
+/// One tilted-board sample of y_Wᵀτ_G = s·M_G(h)·T·sin δ: u = s·T·sin δ and y = τ_G, the
+/// measured torque minus the rotors' own τ_B (eq. 2, pitch row with k_TY).
+struct TiltedSample {
+  double u = 0.0;
+  double y = 0.0;
+};
+
+TiltedSample tiltedSample(const PlatformLog& log, std::size_t i, double arm,
+                          const LevelingInputs& in, double torque_sign) {
+  double S = 0.0;
+  std::array<double, 4> n2{};
+  for (std::size_t k = 0; k < 4; ++k) {
+    n2[k] = log.n_rpm[k][i] * log.n_rpm[k][i];
+    S += n2[k];
+  }
+  const double tau_B = arm * in.k_TY_N_per_rpm2 * (-n2[0] + n2[1] - n2[2] + n2[3]);
+  return {torque_sign * in.k_T_N_per_rpm2 * S * std::sin(log.tilt_deg[i] * model::kDegToRad),
+          log.tau_Nm[1][i] - tau_B};
+}
+
 TiltedSamples tiltedSamples(const PlatformLog& log, const LevelingInputs& in,
                             const LevelingFitOptions& options) {
   if (!(in.k_T_N_per_rpm2 > 0.0) || !(in.k_TY_N_per_rpm2 > 0.0) ||
@@ -62,17 +82,10 @@ TiltedSamples tiltedSamples(const PlatformLog& log, const LevelingInputs& in,
       ++t.beyond;
       continue;
     }
-    double S = 0.0;
-    std::array<double, 4> n2{};
-    for (std::size_t k = 0; k < 4; ++k) {
-      n2[k] = log.n_rpm[k][i] * log.n_rpm[k][i];
-      S += n2[k];
-    }
-    const double tau_B = arm * in.k_TY_N_per_rpm2 * (-n2[0] + n2[1] - n2[2] + n2[3]);
+    const TiltedSample sample = tiltedSample(log, i, arm, in, options.torque_sign);
     t.h.push_back(log.h_m[i]);
-    t.u.push_back(options.torque_sign * in.k_T_N_per_rpm2 * S *
-                  std::sin(log.tilt_deg[i] * model::kDegToRad));
-    t.y.push_back(log.tau_Nm[1][i] - tau_B);
+    t.u.push_back(sample.u);
+    t.y.push_back(sample.y);
     t.h_min_m = std::min(t.h_min_m, log.h_m[i]);
     t.h_max_m = std::max(t.h_max_m, log.h_m[i]);
     t.tilt_min_deg = std::min(t.tilt_min_deg, tilt);
@@ -233,6 +246,19 @@ LevelingTableFit fitLevelingTable(const PlatformLog& log, const LevelingInputs& 
   detail::warnIfManyOutliers(out.warnings, "leveling table fit", out.stats);
   if (t.beyond > 0) out.warnings.push_back(beyondWarning(t.beyond, options));
   return out;
+}
+
+std::vector<double> measuredLevelingCoefficient(const PlatformLog& log, const LevelingInputs& in,
+                                                const LevelingFitOptions& options) {
+  const double arm = std::sqrt(2.0) * in.diagonal_rotor_distance_m / 4.0;
+  std::vector<double> m(log.size(), kNaN);
+  for (std::size_t i = 0; i < log.size(); ++i) {
+    const double tilt = std::abs(log.tilt_deg[i]);
+    if (tilt <= options.level_tilt_deg || tilt > options.max_tilt_deg) continue;
+    const TiltedSample sample = tiltedSample(log, i, arm, in, options.torque_sign);
+    m[i] = sample.y / sample.u;
+  }
+  return m;
 }
 
 }  // namespace geaware::ident

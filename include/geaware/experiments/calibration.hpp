@@ -13,7 +13,9 @@
 // so the platform's k_T (the one g1, g2 and the leveling scale were fitted with) and its k_I
 // are what the controller gets; J_R and the throttle curve come from the stand. The drag table
 // and the mass and inertia stay those of the vehicle file (the rigs cannot measure them).
-// Details and the reasons for the sweeps: docs/results.md, "Calibration".
+// The identification is `geaware identify`'s own (ident/identify.hpp, default options), run
+// on the rigs' rows in memory. Details and the reasons for the sweeps: docs/results.md,
+// "Calibration".
 
 #include <cstddef>
 #include <cstdint>

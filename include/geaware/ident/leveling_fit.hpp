@@ -75,6 +75,11 @@ struct LevelingTableFit {
 [[nodiscard]] LevelingFit fitLeveling(const PlatformLog& log, const LevelingInputs& inputs,
                                       const LevelingFitOptions& options = {});
 
+/// The per-sample M̃_G = y_Wᵀτ_G/(s·T·sin δ) [m] of the samples the fits use (level_tilt_deg <
+/// |tilt| ≤ max_tilt_deg), NaN elsewhere; for plots.
+[[nodiscard]] std::vector<double> measuredLevelingCoefficient(
+    const PlatformLog& log, const LevelingInputs& inputs, const LevelingFitOptions& options = {});
+
 /// M_G(h) [m] for given shape and scale.
 [[nodiscard]] double levelingCoefficient(double g3_m, double g4_m2, double scale_m4, double h_m);
 

@@ -1,0 +1,81 @@
+#pragma once
+// The virtual rigs run as the paper's rigs (`geaware rig platform|rotor|calibrate`): what a run
+// collects beside its rows, the pages that show it, and the text table of the truth's
+// calibration against the paper. The rows themselves go to the caller's sink (a CSV file on the
+// command line); nothing here opens a file or prints.
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "geaware/model/vehicle_params.hpp"
+#include "geaware/report/page.hpp"
+#include "geaware/sim/rigs.hpp"
+
+namespace geaware::experiments {
+
+/// A platform sweep to run on `vehicle`'s rotor geometry with the default truth aerodynamics.
+struct PlatformRigRun {
+  sim::PlatformSweep sweep;
+  sim::PlatformParams params;
+  std::uint64_t seed = 1;
+  /// Collect the per-setpoint means for platformRigPage (at most 200,000 setpoints; more is
+  /// refused with std::invalid_argument before the sweep starts).
+  bool collect_means = false;
+};
+
+/// Per equal-speed setpoint (tilt, n, h) means of a platform sweep, for its page.
+struct PlatformSetpointMean {
+  double fz_N = 0.0;      ///< sum of f_z until divided [N]
+  double ty_Nm = 0.0;     ///< sum of τ_y [N·m]
+  double t_free_N = 0.0;  ///< the rotors' free-air thrust Σk_T·n² [N]
+  int count = 0;
+};
+using PlatformMeans = std::map<std::tuple<double, double, double>, PlatformSetpointMean>;
+
+struct PlatformRigResult {
+  std::size_t rows = 0;
+  PlatformMeans means;  ///< empty unless collect_means
+};
+
+/// Throws std::invalid_argument when `run` collects means of more setpoints than a page can plot
+/// (runPlatformRig checks this first too; call it before creating the rows' file).
+void checkPlatformRigRun(const PlatformRigRun& run);
+
+/// Runs the sweep, handing every row to `sink`; `progress(done, total)` after each setpoint.
+[[nodiscard]] PlatformRigResult runPlatformRig(
+    const model::VehicleParams& vehicle, const PlatformRigRun& run,
+    const std::function<void(const sim::PlatformRow&)>& sink,
+    const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+/// The sweep's page: F_G on the level board and the leveling torque, per speed (and tilt).
+/// `produced_by` is the first paragraph (the command that made it).
+[[nodiscard]] report::Page platformRigPage(const PlatformMeans& means, const std::string& produced_by);
+
+/// A stand run: the rows to `sink`; with `collect` the first 500,000 rows are kept for the page.
+struct RotorRigResult {
+  std::size_t rows = 0;
+  std::vector<sim::RotorStandRow> kept;
+};
+[[nodiscard]] RotorRigResult runRotorRig(const model::VehicleParams& vehicle,
+                                         const sim::RotorStandParams& params,
+                                         const std::vector<double>& throttles, std::uint64_t seed,
+                                         const std::function<void(const sim::RotorStandRow&)>& sink,
+                                         bool collect);
+
+/// The stand's page: speed over time, thrust and torque against speed.
+[[nodiscard]] report::Page rotorRigPage(const std::vector<sim::RotorStandRow>& rows,
+                                        const std::string& produced_by);
+
+/// The truth's calibration against the paper as a text table (one line per target, a summary).
+[[nodiscard]] std::string calibrationText(const sim::CalibrationResult& result,
+                                          const std::string& vehicle_name);
+
+/// The calibration page: the targets' table and the truth's curves beside the paper's points.
+[[nodiscard]] report::Page calibrationPage(const sim::CalibrationResult& result,
+                                           const std::string& produced_by);
+
+}  // namespace geaware::experiments
