@@ -10,7 +10,7 @@ namespace geaware::experiments {
 const std::vector<TableOneExperiment>& tableOneExperiments() {
   using A = control::AccelerationCompensation;
   using T = control::TorqueCompensation;
-  // FACTS.md, "The paper's results (its Table I …)"; cm.
+  // docs/paper-facts.md, "Table I: the paper's flights"; cm.
   static const std::vector<TableOneExperiment> kTable = {
       {1, A::kNone, T::kNone, 0.12, 1.0, 1.5, 0.8, {6.54, 8.64, 10.85, 18.04, 2.19}},
       {2, A::kIndi, T::kNone, 0.12, 1.0, 1.5, 0.8, {5.51, 6.83, 8.77, 16.07, 2.06}},

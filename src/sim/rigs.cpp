@@ -1,5 +1,5 @@
 // The paper's virtual test rigs and the calibration of the truth aerodynamics against the
-// paper's measurements (FACTS.md). See docs/sim-aerodynamics.md.
+// paper's measurements (docs/paper-facts.md). See docs/sim-aerodynamics.md.
 
 #include "geaware/sim/rigs.hpp"
 
@@ -268,7 +268,7 @@ std::size_t RotorStand::sweep(const std::vector<double>& throttles, std::uint64_
 
 namespace {
 
-// The paper's measurements (FACTS.md). These are comparison targets only; the truth never
+// The paper's measurements (docs/paper-facts.md), comparison targets only; the truth never
 // reads them.
 constexpr double kPaperG1 = 1.804e-2;  // F_G(h) = g2/(h² + g1), quadrotor platform
 constexpr double kPaperG2 = 7.339e-3;
@@ -399,7 +399,7 @@ CalibrationResult calibrate(const model::VehicleParams& vehicle, const RotorAero
   res.checks.push_back(
       {"saturation tau(15)/tau(11) at 0.11 m", "-", 0.15 / 0.16, sat, "≤ 1.10", sat <= 1.10});
 
-  // 4. Torque ∝ n² at fixed h and tilt (FACTS.md: "grows with the square of the speed").
+  // 4. Torque ∝ n² at fixed h and tilt (docs/paper-facts.md: "grows with the square of the speed").
   {
     const double n = 7500.0;
     const double half = platform.wrench(0.18, 15.0, {n, n, n, n}).wrench.torque_B.y();

@@ -46,7 +46,7 @@ namespace model = geaware::model;
 namespace sim = geaware::sim;
 
 constexpr std::array<std::uint64_t, 3> kSeeds = {1, 2, 3};
-constexpr double kTargetRpm = 15000.0;  // the torque target's speed (FACTS.md's table)
+constexpr double kTargetRpm = 15000.0;  // the torque target's speed (docs/paper-facts.md's table)
 constexpr double kTargetTiltDeg = 15.0;
 
 // Tolerances of the issue.
@@ -399,7 +399,7 @@ TEST(RoundTrip, AdditionalThrustMatchesTheTruthAsCloseAsItsFormAllows) {
 
 TEST(RoundTrip, LevelingTorqueMatchesTheTruthAsCloseAsItsFormAllows) {
   // The issue asks for the torque at 15° within 10 % over 0.1–0.35 m. The truth's torque (like
-  // the paper's measurement, FACTS.md) collapses above 0.27 m where the slipstreams merge:
+  // the paper's measurement, docs/paper-facts.md) collapses above 0.27 m where slipstreams merge:
   // −0.171 N·m at 0.27 m, −0.035 at 0.33, −0.014 at 0.35, a factor 12 in 8 cm. M_G's smooth
   // peak cannot fall that fast; the best possible curve of the form is 54 % off somewhere in
   // the range (a pointwise relative error, dominated by the small values near 0.35 m).

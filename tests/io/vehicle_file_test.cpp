@@ -1,5 +1,5 @@
 // Vehicle files (io/vehicle_file): the built-in vehicle is the committed file and carries the
-// paper's parameters (shared/reference/FACTS.md, with its caveats resolved as documented in
+// paper's parameters (docs/paper-facts.md, with its caveats resolved as documented in
 // docs/vehicle-file.md), and files on disk load or fail naming the path. Bad files:
 // vehicle_file_errors_test.cpp (structure) and vehicle_file_validation_test.cpp (values).
 
@@ -51,7 +51,7 @@ TEST(BuiltinVehicle, HasThePapersParameters) {
   EXPECT_EQ(p.name, "paper_quad");
   EXPECT_TRUE(p.validate().empty());
 
-  // Supplementary table (FACTS.md); k_T is the single-rotor stand's of the three published.
+  // Supplementary table (docs/paper-facts.md); k_T is the single-rotor stand's of the three.
   EXPECT_DOUBLE_EQ(p.mass_kg, 1.696);
   EXPECT_MATRIX_NEAR(p.inertia_kgm2, Eigen::Vector3d(0.00745220, 0.00792752, 0.01249522), 0.0);
   EXPECT_DOUBLE_EQ(p.propeller_radius_m, 0.089);
@@ -73,8 +73,9 @@ TEST(BuiltinVehicle, HasThePapersParameters) {
 }
 
 TEST(BuiltinVehicle, ThrottleCurveWithCorrectedC0MatchesTheFigure) {
-  // FACTS.md: the throttle figure shows about 3,300 rpm at t = 0 and 19,700 rpm at t = 1, and
-  // the corrected curve reproduces it within 3 % (the printed c0 would give 10,200 at t = 0).
+  // docs/paper-facts.md: the throttle figure shows about 3,300 rpm at t = 0 and 19,700 rpm at
+  // t = 1, and the corrected curve reproduces it within 3 % (the printed c0 would give 10,200 at
+  // t = 0).
   const auto& t = io::builtinVehicle().throttle;
   const auto rpm = [&](double x) {
     return std::sqrt(t.c2_rpm2 * x * x + t.c1_rpm2 * x + t.c0_rpm2);
@@ -92,7 +93,7 @@ TEST(BuiltinVehicle, LevelingScaleMatchesTheMeasuredPeakTorque) {
   const model::VehicleParams p = io::builtinVehicle();
   const auto& l = p.leveling_torque;
   const double h_peak = (-l.g3_m + std::sqrt(l.g3_m * l.g3_m + 12.0 * l.g4_m2)) / 6.0;
-  EXPECT_NEAR(h_peak, 0.186, 5e-4);  // FACTS.md quotes three digits
+  EXPECT_NEAR(h_peak, 0.186, 5e-4);  // docs/paper-facts.md quotes three digits
   const double den = h_peak * h_peak + l.g3_m * h_peak + l.g4_m2;
   const double m_g_peak = l.scale_m4 * h_peak / (den * den);
   const double thrust_N = 4.0 * p.rotor.k_T_N_per_rpm2 * 15000.0 * 15000.0;

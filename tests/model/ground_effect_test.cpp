@@ -1,5 +1,5 @@
 // Ground-effect model: closed forms of the paper's F_G, M_G and J'(h), and the calibration
-// targets of FACTS.md.
+// targets of docs/paper-facts.md.
 #include "geaware/model/ground_effect.hpp"
 
 #include <cmath>
@@ -23,7 +23,7 @@ TEST(GroundEffect, ThrustRatioMatchesClosedFormAndFactsTable) {
   for (double h = 0.072; h < 3.0; h += 0.013) {
     EXPECT_NEAR(ge.thrustRatio(h), g2 / (h * h + g1), 1e-15) << "h = " << h;
   }
-  // FACTS.md: F_G(0.072) ≈ 0.32, F_G(0.1) ≈ 0.26, F_G(0.3) ≈ 0.07, F_G(2.0) ≈ 0.002.
+  // docs/paper-facts.md: F_G(0.072) ≈ 0.32, F_G(0.1) ≈ 0.26, F_G(0.3) ≈ 0.07, F_G(2.0) ≈ 0.002.
   EXPECT_NEAR(ge.thrustRatio(0.072), 0.316, 0.005);
   EXPECT_NEAR(ge.thrustRatio(0.1), 0.262, 0.005);
   EXPECT_NEAR(ge.thrustRatio(0.3), 0.068, 0.003);
@@ -63,7 +63,7 @@ TEST(GroundEffect, HeightsBelowTheLandingGearAreClamped) {
 
 TEST(GroundEffect, LevelingCoefficientPeaksNear018mWithTheMeasuredMagnitude) {
   const GroundEffectModel ge(paperParams());
-  // FACTS.md: the peak lies at (−g3 + √(g3² + 12·g4))/6 ≈ 0.186 m, the paper's "about 0.18 m".
+  // docs/paper-facts.md: the peak is at (−g3 + √(g3² + 12·g4))/6 ≈ 0.186 m, the paper's "≈ 0.18 m".
   EXPECT_NEAR(ge.levelingPeakHeight(), 0.186, 0.002);
   double best_h = 0.0, best = 0.0;
   for (double h = 0.072; h < 1.0; h += 1e-4) {
@@ -84,7 +84,7 @@ TEST(GroundEffect, LevelingTorqueReproducesTheMeasuredPeakAndLevels) {
   // Nose-up tilt of 15° about body y (as the platform's board tilt).
   const Eigen::Matrix3d R = Eigen::AngleAxisd(15.0 * geaware::model::kDegToRad, Eigen::Vector3d::UnitY()).toRotationMatrix();
   const Eigen::Vector3d tau = ge.levelingTorque_B(R, 0.18, thrust);
-  EXPECT_NEAR(tau.norm(), 0.215, 0.215 * 0.05) << "measured peak, FACTS.md table";
+  EXPECT_NEAR(tau.norm(), 0.215, 0.215 * 0.05) << "measured peak, docs/paper-facts.md table";
   // Leveling: the torque opposes the tilt (negative about y for a positive pitch).
   EXPECT_LT(tau.y(), 0.0);
   EXPECT_NEAR(tau.x(), 0.0, 1e-12);

@@ -1,4 +1,4 @@
-// Motor model and the ESC throttle curve (FACTS.md, supplementary section 3).
+// Motor model and the ESC throttle curve (docs/paper-facts.md, supplementary section 3).
 #include "geaware/model/motor.hpp"
 
 #include <cmath>
@@ -14,7 +14,7 @@ using geaware::model::ThrottleCurve;
 
 TEST(ThrottleCurve, ReproducesTheThrottleFigure) {
   const ThrottleCurve curve(geaware_test::paperParams().throttle);
-  // FACTS.md, read off id_single_motor.PNG: ~3,300 rpm at 0, 10,300 at 0.2, 15,000 at 0.5,
+  // docs/paper-facts.md, off id_single_motor.PNG: ~3,300 rpm at 0, 10,300 at 0.2, 15,000 at 0.5,
   // 19,700 at full throttle; the corrected c0 reproduces them within 3 %. With the printed
   // (typo) c0 = 1.033111e8 the zero-throttle speed would be ~10,200 rpm and this fails.
   EXPECT_NEAR(curve.speedRpm(0.0), 3300.0, 0.03 * 3300.0);
@@ -52,7 +52,7 @@ TEST(ThrottleCurve, LinearCurveInvertsExactly) {
 TEST(Motor, ThrustAndReactionTorque) {
   const auto& r = geaware_test::paperParams().rotor;
   EXPECT_NEAR(geaware::model::rotorThrust(r, 10000.0), r.k_T_N_per_rpm2 * 1e8, 1e-15);
-  // Hover check of FACTS.md: 16.64 N over 4 rotors needs ≈ 10,200 rpm with k_T = 4.0e-8.
+  // Hover check of docs/paper-facts.md: 16.64 N over 4 rotors needs ≈ 10,200 rpm with k_T = 4.0e-8.
   EXPECT_NEAR(std::sqrt(16.64 / 4.0 / r.k_T_N_per_rpm2), 10190.0, 30.0);
   // Steady: k_I·n²; accelerating at 1000 rpm/s adds J_R·(1000·2π/60) N·m.
   EXPECT_NEAR(geaware::model::rotorReactionTorque(r, 10000.0, 0.0), r.k_I_Nm_per_rpm2 * 1e8, 1e-15);

@@ -1,5 +1,5 @@
 // The virtual rigs: determinism with a seed, noise statistics, sweep layout, the single-rotor
-// stand's closed forms, the mixing experiment of FACTS.md, and the whole calibration.
+// stand's closed forms, the mixing experiment of docs/paper-facts.md, and the whole calibration.
 
 #include "geaware/sim/rigs.hpp"
 
@@ -165,7 +165,7 @@ TEST(Platform, InvalidSweepsAreRejected) {
 }
 
 TEST(Platform, MixingCoefficientsBarelyChangeNearTheGroundWhileThrustDoes) {
-  // FACTS.md "Mixing matrix near the ground": k_TX and k_I change < 10 % from high altitude
+  // docs/paper-facts.md "The mixer near the ground": k_TX and k_I change < 10 % from high altitude
   // down to the board, k_T about 30 %. Rpm-difference experiments on the level board, fitted
   // by least squares from the noisy rig rows (as the paper identified them).
   const double arm = std::sqrt(2.0) * paperParams().diagonal_rotor_distance_m / 4.0;
@@ -233,7 +233,7 @@ TEST(RotorStand, SteadyStateFollowsTheThrottleCurveAndTheRotorLaws) {
     EXPECT_NEAR(r.thrust_N, rp.k_T_N_per_rpm2 * r.rpm * r.rpm, 1e-9);
     EXPECT_NEAR(r.torque_Nm, rp.k_I_Nm_per_rpm2 * r.rpm * r.rpm, 1e-9);
   }
-  // FACTS.md's throttle figure: ~10,300 rpm at 0.2, ~15,000 at 0.5, ~19,700 at 1 (±3 %).
+  // docs/paper-facts.md's throttle figure: ~10,300 rpm at 0.2, ~15,000 at 0.5, ~19,700 at 1 (±3 %).
   EXPECT_NEAR(rows[199].rpm, 10300.0, 0.03 * 10300.0);
   EXPECT_NEAR(rows[399].rpm, 15000.0, 0.03 * 15000.0);
   EXPECT_NEAR(rows[599].rpm, 19700.0, 0.03 * 19700.0);

@@ -1,6 +1,6 @@
 // Truth aerodynamics: closed-form limits and invariants first, then the calibration targets of
-// issue 3 (FACTS.md) with the tolerances the issue sets. The paper's numbers appear here only
-// as targets; the truth itself never reads them.
+// issue 3 (docs/paper-facts.md) with the tolerances the issue sets. The paper's numbers appear
+// here only as targets; the truth itself never reads them.
 
 #include "geaware/sim/rotor_aerodynamics.hpp"
 
@@ -303,7 +303,7 @@ TEST_F(AeroTest, AdditionalThrustWithin20PercentOfThePaperFrom7cmTo1m) {
     EXPECT_NEAR(thrustRatio(h) / paper, 1.0, 0.20)
         << "h = " << h << ": ours " << thrustRatio(h) << ", paper " << paper;
   }
-  // FACTS.md's spot values.
+  // docs/paper-facts.md's spot values.
   EXPECT_NEAR(thrustRatio(0.072), 0.32, 0.2 * 0.32);
   EXPECT_NEAR(thrustRatio(0.1), 0.26, 0.2 * 0.26);
   EXPECT_NEAR(thrustRatio(0.3), 0.07, 0.2 * 0.07);
@@ -321,7 +321,7 @@ TEST_F(AeroTest, LevelingTorqueAt15DegMatchesTheMeasuredTable) {
   struct Point {
     double h, tau;
   };
-  // FACTS.md, read off getorque_all_rpmmodel.PNG (15,000 rpm, 15°). ±25 % (issue 3).
+  // docs/paper-facts.md, read off getorque_all_rpmmodel.PNG (15,000 rpm, 15°). ±25 % (issue 3).
   for (const Point p : {Point{0.33, -0.03}, Point{0.31, -0.10}, Point{0.28, -0.14},
                         Point{0.22, -0.165}, Point{0.18, -0.215}, Point{0.16, -0.215},
                         Point{0.14, -0.20}, Point{0.12, -0.17}, Point{0.11, -0.15}}) {

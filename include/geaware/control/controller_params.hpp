@@ -1,6 +1,6 @@
 #pragma once
 // Parameters of the ground-effect-aware controller (paper section "Model-based Controller with
-// Incremental Inversion"). Defaults: the paper's gains (FACTS.md).
+// Incremental Inversion"). Defaults: the paper's gains (docs/paper-facts.md).
 
 #include <string>
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// The eight tracking experiments of the paper's Table I (FACTS.md): controller combination,
+// The eight tracking experiments of the paper's Table I (docs/paper-facts.md): controllers,
 // height, peak speed, the lemniscate flown, and the paper's published numbers; and the
 // summary of one experiment over seeds (mean ± standard deviation of each metric).
 //

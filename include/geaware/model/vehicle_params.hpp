@@ -22,7 +22,7 @@ struct RotorParams {
 };
 
 /// ESC throttle curve: n² = c2·t² + c1·t + c0 for throttle t ∈ [0, 1], n in rpm.
-/// (FACTS.md: the published curve is one of rpm², and its printed c0 has a factor-10 typo.)
+/// (docs/paper-facts.md: the published curve is one of rpm²; its printed c0 has a factor-10 typo.)
 struct ThrottleCurveParams {
   double c2_rpm2 = 0.0;  ///< quadratic coefficient [rpm²]
   double c1_rpm2 = 0.0;  ///< linear coefficient [rpm²]

@@ -1,5 +1,5 @@
 #pragma once
-// Disturbances of the truth plant (SPEC.md §5): near-ground recirculation turbulence and wind.
+// Disturbances of the truth plant: near-ground recirculation turbulence and wind.
 // Both are seeded and deterministic; both are unknown to the controller.
 //
 // Ground turbulence (a Contribution for Plant::addContribution): near the ground the rotor

@@ -1,5 +1,5 @@
 #pragma once
-// The simulated IMU (SPEC.md §5; the paper's flights: 200 Hz): gyro and specific force with
+// The simulated IMU (the paper's flights: 200 Hz): gyro and specific force with
 // white noise and a bias random walk per axis, in the usual continuous-time densities
 // (Kalibr / rotors_simulator convention), discretised exactly for the sample interval:
 //

@@ -1,5 +1,5 @@
 #pragma once
-// The simulated motion-capture system (SPEC.md §5): the pose of the body origin (geometric
+// The simulated motion-capture system: the pose of the body origin (geometric
 // centre) at a fixed rate, with noise, latency and dropouts.
 //
 // Noise: position + N(0, σ_p²·I); attitude q ⊗ Exp(δθ), δθ ~ N(0, σ_θ²·I) in the body frame

@@ -1,5 +1,5 @@
 #pragma once
-// The four motors, their ESCs and the battery (SPEC.md §5 "Motors"). Rotor speed follows a
+// The four motors, their ESCs and the battery. Rotor speed follows a
 // first-order lag toward the ESC's steady speed for the throttle,
 //   ṅ = (n_ss − n)/τ,   n_ss = √(c2·t² + c1·t + c0)·V/V_nom  clamped to the speed limits,
 // discretised exactly over a step with the target held: n(s) = n_ss + (n0 − n_ss)·e^(−s/τ).

@@ -1,5 +1,5 @@
 #pragma once
-// The truth plant (SPEC.md §5): rigid body + motors/ESC/battery + per-rotor aerodynamics over a
+// The truth plant: rigid body + motors/ESC/battery + per-rotor aerodynamics over a
 // terrain, advanced at a fixed step by RK4, with ground-strike detection. The forces and torques
 // are a sum of independent contributions behind one small interface (STYLE.md point 7):
 // gravity, rotor aerodynamics, motor reaction/gyroscopic torques, and any disturbance added

@@ -1,5 +1,5 @@
 #pragma once
-// The simulated lattice time-of-flight ranger (SPEC.md §5; the paper: 16×16 zones at 100 Hz,
+// The simulated lattice time-of-flight ranger (the paper: 16×16 zones at 100 Hz,
 // under the body, looking down along −z_B). Each zone is one ray from the mount point along
 // model::RangerFrame::zoneDirection_B, cast against the Terrain; the frame is filled exactly as
 // sensor_data.hpp documents (zone (i, j) at index i·N + j, i along x_B, j along y_B).

@@ -1,5 +1,5 @@
 #pragma once
-// 6-DoF rigid-body dynamics of the centre of mass (SPEC.md §1 and §5) and a classic RK4
+// 6-DoF rigid-body dynamics of the centre of mass and a classic RK4
 // integrator that takes the dynamics as a callable (STYLE.md point 7):
 //   ṗ = v,   v̇ = R·f_B/m,   q̇ = ½·q ⊗ (0, ω),   ω̇ = J⁻¹·(τ_B − ω × J·ω),
 // with f_B the total body-frame force (gravity included, as a contribution) and τ_B the total

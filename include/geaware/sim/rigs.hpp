@@ -1,5 +1,5 @@
 #pragma once
-// The paper's virtual test rigs (its section on methods, SPEC.md §5), driven by the truth
+// The paper's virtual test rigs (its section on methods), driven by the truth
 // aerodynamics (sim/rotor_aerodynamics.hpp):
 //  - the quadrotor force/torque platform: vehicle fixed and level at height h above a ground
 //    board tilted by δ about the vehicle's y axis, rotors at commanded speeds, a six-axis sensor
@@ -154,7 +154,7 @@ class RotorStand {
 };
 
 // ----------------------------------------------------------------------------------------------
-// Calibration against the paper (FACTS.md)
+// Calibration against the paper (docs/paper-facts.md)
 // ----------------------------------------------------------------------------------------------
 
 /// One calibration target: what the paper measured, what our truth gives, the tolerance.
@@ -183,7 +183,7 @@ struct CalibrationResult {
   [[nodiscard]] bool allPass() const noexcept;
 };
 
-/// Runs the calibration sweeps of FACTS.md on the noise-free platform and the drag/mixing
+/// Runs the calibration sweeps (docs/paper-facts.md) on the noise-free platform and the drag/mixing
 /// experiments on `vehicle` with the truth aerodynamics `aero`.
 [[nodiscard]] CalibrationResult calibrate(const model::VehicleParams& vehicle,
                                           const RotorAeroParams& aero);

@@ -65,7 +65,7 @@ struct RotorAeroParams {
   double min_ground_distance_m = 0.01;
 
   // --- Forward-flight fade -----------------------------------------------------------------------
-  /// Induced velocity v_i at the reference rotor speed (FACTS.md: about 4 m/s at hover) [m/s].
+  /// Induced velocity v_i at the reference rotor speed (docs/paper-facts.md: ≈ 4 m/s) [m/s].
   double induced_velocity_mps = 4.0;
   /// Rotor speed at which `induced_velocity_mps` holds; v_i scales with n (momentum theory) [rpm].
   double induced_velocity_ref_rpm = 10179.0;

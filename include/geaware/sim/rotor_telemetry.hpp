@@ -1,5 +1,5 @@
 #pragma once
-// Simulated rotor-speed telemetry (SPEC.md §5; the paper: bidirectional DShot at 200 Hz): the
+// Simulated rotor-speed telemetry (the paper: bidirectional DShot at 200 Hz): the
 // true rotor speeds plus white noise, quantised to the telemetry's resolution, never negative.
 //
 // Resolution: bidirectional DShot reports the electrical period, which the flight controller

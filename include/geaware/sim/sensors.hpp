@@ -1,5 +1,5 @@
 #pragma once
-// All the simulated sensors of one vehicle (SPEC.md §5), each at its own rate with its own
+// All the simulated sensors of one vehicle, each at its own rate with its own
 // seeded noise stream: IMU, motion capture, rotor-speed telemetry and the lattice ranger. The
 // runner calls step() once per plant step with the true state; the samples that fall due come
 // back as the types of model/sensor_data.hpp, the only things that cross the wall to the

@@ -1,5 +1,5 @@
 #pragma once
-// The concrete terrains of SPEC.md §5: flat ground, a tilted plane, a step or table edge, and a
+// The concrete terrains: flat ground, a tilted plane, a step or table edge, and a
 // height map loaded from a file. Each overrides rayCast with an exact method: a closed form for
 // the planes and the step; for the height map, a walk over the cells under the ray with the
 // closed-form intersection of each cell's bilinear patch.

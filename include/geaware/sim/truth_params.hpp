@@ -19,8 +19,8 @@
 namespace geaware::sim {
 
 /// Battery and its influence on the ESC. The ESC curve was identified "after removing the
-/// battery-voltage influence" (FACTS.md, supplementary section 3), i.e. it holds at the nominal
-/// voltage. An ESC drives the motor with a duty cycle; the motor's back-EMF speed is
+/// battery-voltage influence" (docs/paper-facts.md, supplementary section 3), i.e. it holds at
+/// the nominal voltage. An ESC drives the motor with a duty cycle; the motor's back-EMF speed is
 /// proportional to the applied voltage, so the steady speed scales with V/V_nom and
 ///   n_ss² = (c2·t² + c1·t + c0) · (V/V_nom)².
 /// The battery is a linear open-circuit voltage (V_full at full charge down to V_empty at the
