@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "geaware/io/format_version.hpp"
 #include "geaware/io/vehicle_file.hpp"
 #include "geaware/io/yaml_reader.hpp"
 #include "geaware/model/units.hpp"
@@ -128,6 +129,7 @@ FlightScenario parseScenarioYaml(std::string_view yaml_text, const std::string& 
 
   io::YamlContext ctx;
   io::MapReader root(doc, "", ctx);
+  (void)io::readFormatVersion(root, ctx, source);
   FlightScenario s;
 
   const std::string vehicle = root.text("vehicle");

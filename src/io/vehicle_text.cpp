@@ -53,22 +53,26 @@ std::string withComment(const std::string& code, std::size_t column, const std::
 
 }  // namespace
 
-/// 7 significant digits: far below any fit's standard error, and readable.
+/// The shortest text that reads back as exactly `v` (std::to_chars, general style without a
+/// precision: 0.0009, 3.998392720256027e-08): what the file says is the fitted double, bit for bit.
 std::string formatNumber(double v) {
   char buf[64];
-  const auto res = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 7);
+  const auto res = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general);
   return std::string(buf, res.ptr);
 }
 
-double parseBack(const std::string& s) {
-  double v = 0.0;
-  std::from_chars(s.data(), s.data() + s.size(), v);
-  return v;
-}
-
-std::string formatList(const std::vector<double>& v) {
+std::string formatList(const std::vector<double>& v, int digits) {
   std::string s = "[";
-  for (std::size_t i = 0; i < v.size(); ++i) s += (i == 0 ? "" : ", ") + formatNumber(v[i]);
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    std::string x = formatNumber(v[i]);
+    if (digits > 0) {
+      char buf[64];
+      const auto res =
+          std::to_chars(buf, buf + sizeof buf, v[i], std::chars_format::general, digits);
+      x.assign(buf, res.ptr);
+    }
+    s += (i == 0 ? "" : ", ") + x;
+  }
   return s + "]";
 }
 
@@ -295,7 +299,7 @@ void rewriteSection(std::vector<std::string>& lines, const SectionSpan& span,
     body.push_back(ind4 + "heights_m: " + formatList(e.heights_m) + eol);
     body.push_back(ind4 + s.values_key + ": " + formatList(e.values) + eol);
     if (!e.std_errors.empty()) {
-      body.push_back(ind4 + "# std. errors of " + s.values_key + ": " + formatList(e.std_errors) +
+      body.push_back(ind4 + "# std. errors of " + s.values_key + ": " + formatList(e.std_errors, 7) +
                      eol);
     }
   } else {

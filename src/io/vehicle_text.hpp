@@ -15,11 +15,10 @@
 
 namespace geaware::io::detail {
 
-/// A number as the writer writes it, and back.
+/// A number as the writer writes it: the shortest text that reads back as exactly `v`.
 [[nodiscard]] std::string formatNumber(double v);
-[[nodiscard]] double parseBack(const std::string& s);
-/// "[a, b, c]"
-[[nodiscard]] std::string formatList(const std::vector<double>& v);
+/// "[a, b, c]", each as formatNumber, or with `digits` significant digits (comments).
+[[nodiscard]] std::string formatList(const std::vector<double>& v, int digits = 0);
 /// "a.b.c" → {"a", "b", "c"}
 [[nodiscard]] std::vector<std::string> splitPath(const std::string& key);
 

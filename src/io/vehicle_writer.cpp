@@ -74,7 +74,7 @@ std::string reemit(const std::string& base_text, const VehicleUpdate& update,
 bool readsBackAs(const std::vector<double>& got, const std::vector<double>& written) {
   if (got.size() != written.size()) return false;
   for (std::size_t i = 0; i < got.size(); ++i) {
-    if (got[i] != parseBack(formatNumber(written[i]))) return false;
+    if (got[i] != written[i]) return false;  // bit for bit: formatNumber round-trips
   }
   return true;
 }

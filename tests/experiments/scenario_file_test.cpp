@@ -86,6 +86,22 @@ TEST(ScenarioFile, CommittedExamplesLoad) {
   EXPECT_NEAR(edge.trajectory->sample(0.0).p_W.x(), -1.0, 1e-12);
 }
 
+TEST(ScenarioFile, FormatVersionAbsentIsOneAndUnknownIsRefused) {
+  const std::string text = lowText();
+  const std::string line = "format_version: 1";
+  ASSERT_NE(text.find(line), std::string::npos);  // the committed file says its version
+  const std::string unversioned = replaced(text, line, "");
+  const auto a = parseScenarioYaml(unversioned, "s.yaml", sourceDir() / "config/scenarios");
+  const auto b = parseScenarioYaml(text, "s.yaml", sourceDir() / "config/scenarios");
+  EXPECT_EQ(a.seed, b.seed);
+  const std::string v3 = replaced(text, line, "format_version: 3");
+  const auto p = problemsOf(v3);
+  ASSERT_EQ(p.size(), 1u);  // nothing else is read
+  EXPECT_EQ(p[0].key, "format_version");
+  EXPECT_EQ(p[0].line, lineOf(v3, "format_version"));
+  EXPECT_NE(p[0].message.find("supported: 1"), std::string::npos);
+}
+
 TEST(ScenarioFile, UnknownAndMissingKeysNameTheKeyAndLine) {
   {
     const std::string text = replaced(lowText(), "  laps: 1\n", "  laps: 1\n  lap_count: 2\n");

@@ -141,3 +141,23 @@ TEST_F(VehicleWriter, FlowStyleSectionsFallBackToReEmitting) {
   EXPECT_EQ(formula.additional_thrust.g2_m2, orig.additional_thrust.g2_m2);
 }
 }  // namespace
+
+namespace {
+
+TEST_F(VehicleWriter, ValuesReadBackBitForBit) {
+  // Values with 17 significant digits, and the next double after one: the file must give back
+  // the very doubles that were merged (the shortest round-trip text, not a rounded one).
+  VehicleUpdate u;
+  const double k_T = 1.0 / 25.0e6 * (1.0 + 1.0 / 3.0);
+  const double g1 = std::nextafter(0.0175, 1.0);
+  u.set("rotor.k_T_N_per_rpm2", k_T);
+  u.set("ground_effect.additional_thrust.g1_m2", g1);
+  u.setList("drag.d_x_N_per_mps", {1.0 / 3.0, 0.1 + 0.2, 0.35, 0.4, 0.41, 0.42, 0.43});
+  const auto merged = geaware::io::parseVehicleYaml(mergeVehicleYaml(slurp(base_), "base", u).yaml, "m");
+  EXPECT_EQ(merged.rotor.k_T_N_per_rpm2, k_T);
+  EXPECT_EQ(merged.additional_thrust.g1_m2, g1);
+  EXPECT_EQ(merged.drag.d_x_N_per_mps[0], 1.0 / 3.0);
+  EXPECT_EQ(merged.drag.d_x_N_per_mps[1], 0.1 + 0.2);
+}
+
+}  // namespace
