@@ -7,7 +7,6 @@
 #include <fmt/format.h>
 
 #include <chrono>
-#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -16,6 +15,7 @@
 #include <vector>
 
 #include "geaware/experiments/rig_runs.hpp"
+#include "geaware/io/csv_writer.hpp"
 #include "geaware/io/json.hpp"
 #include "geaware/io/provenance.hpp"
 #include "geaware/io/range.hpp"
@@ -52,30 +52,6 @@ struct RigOptions {
 model::VehicleParams loadVehicle(const std::string& path) {
   return path.empty() ? io::builtinVehicle() : io::loadVehicleFile(path);
 }
-
-/// A CSV output file that reports write errors (disk full…) instead of losing rows silently.
-class CsvFile {
- public:
-  explicit CsvFile(const std::string& path) : path_(path), f_(std::fopen(path.c_str(), "w")) {
-    if (f_ == nullptr) throw std::runtime_error(path + ": cannot open for writing");
-  }
-  CsvFile(const CsvFile&) = delete;
-  CsvFile& operator=(const CsvFile&) = delete;
-  ~CsvFile() {
-    if (f_ != nullptr) std::fclose(f_);
-  }
-  [[nodiscard]] std::FILE* get() const { return f_; }
-  void close() {
-    const bool bad = std::ferror(f_) != 0;
-    const int rc = std::fclose(f_);
-    f_ = nullptr;
-    if (bad || rc != 0) throw std::runtime_error(path_ + ": write failed");
-  }
-
- private:
-  std::string path_;
-  std::FILE* f_;
-};
 
 /// Progress on stderr for long sweeps: at most about twice a second, only when it takes a while.
 class Progress {
@@ -144,15 +120,14 @@ int runPlatform(const RigOptions& o) {
   run.collect_means = !o.report.empty();
   experiments::checkPlatformRigRun(run);
 
-  CsvFile csv(o.out);
-  fmt::print(csv.get(), "t_s,h_m,tilt_deg,n1_rpm,n2_rpm,n3_rpm,n4_rpm,fx_N,fy_N,fz_N,tx_Nm,ty_Nm,tz_Nm\n");
+  io::CsvWriter csv(o.out, {"t_s", "h_m", "tilt_deg", "n1_rpm", "n2_rpm", "n3_rpm", "n4_rpm", "fx_N", "fy_N",
+                            "fz_N", "tx_Nm", "ty_Nm", "tz_Nm"});
   Progress progress("rig platform");
   const auto result = experiments::runPlatformRig(
       vehicle, run,
       [&](const sim::PlatformRow& r) {
-        fmt::print(csv.get(), "{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.t_s, r.h_m, r.tilt_deg,
-                   r.n_rpm[0], r.n_rpm[1], r.n_rpm[2], r.n_rpm[3], r.force_B.x(), r.force_B.y(),
-                   r.force_B.z(), r.torque_B.x(), r.torque_B.y(), r.torque_B.z());
+        csv.row({r.t_s, r.h_m, r.tilt_deg, r.n_rpm[0], r.n_rpm[1], r.n_rpm[2], r.n_rpm[3], r.force_B.x(),
+                 r.force_B.y(), r.force_B.z(), r.torque_B.x(), r.torque_B.y(), r.torque_B.z()});
       },
       [&progress](std::size_t done, std::size_t total) { progress(done, total); });
   csv.close();
@@ -169,13 +144,10 @@ int runRotor(const RigOptions& o) {
   sp.hold_s = o.hold_s;
   sp.sample_period_s = o.sample_period_s;
   const std::vector<double> throttles = io::parseRange(o.throttle, "--throttle").values();
-  CsvFile csv(o.out);
-  fmt::print(csv.get(), "t_s,throttle,rpm,thrust_N,torque_Nm\n");
+  io::CsvWriter csv(o.out, {"t_s", "throttle", "rpm", "thrust_N", "torque_Nm"});
   const auto result = experiments::runRotorRig(
       vehicle, sp, throttles, o.seed,
-      [&](const sim::RotorStandRow& r) {
-        fmt::print(csv.get(), "{},{},{},{},{}\n", r.t_s, r.throttle, r.rpm, r.thrust_N, r.torque_Nm);
-      },
+      [&](const sim::RotorStandRow& r) { csv.row({r.t_s, r.throttle, r.rpm, r.thrust_N, r.torque_Nm}); },
       !o.report.empty());
   csv.close();
   std::cerr << fmt::format("geaware: wrote {} rows to {}\n", result.rows, o.out);

@@ -11,6 +11,7 @@
 
 #include "geaware/ident/identify.hpp"
 #include "geaware/model/ground_effect.hpp"
+#include "geaware/model/vehicle_schema.hpp"
 #include "geaware/ident/rig_logs.hpp"
 #include "geaware/model/units.hpp"
 
@@ -140,65 +141,71 @@ Identified identifyOnRigs(const RigLogs& logs, const model::VehicleParams& file_
 }
 
 /// Step 3: the merge into the vehicle file's parameters, stand first, then the platform
-/// (docs/identification.md, "Commands"); every merged value is listed in c.parameters.
+/// (docs/identification.md, "Commands"), through the parameter schema: every identified key is
+/// listed in c.parameters beside the file's value, then model::mergeParameters takes them.
 model::VehicleParams mergeIdentified(const model::VehicleParams& file_vehicle, const Identified& id,
                                      ControllerCalibration& c) {
-  const ident::RotorFit& rotor = *id.rotor.fits.rotor;
-  const ident::Fits& f = id.platform.fits;
-  const ident::MixingFit& mixing = *f.mixing;
-  model::VehicleParams v = file_vehicle;
-  auto set = [&](const std::string& key, const std::string& unit, const std::string& source,
-                 double& field, const ident::Estimate& e) {
-    c.parameters.push_back({key, unit, source, field, e.value, e.std_error});
-    field = e.value;
+  const auto& schema = model::vehicleSchema();
+  model::VehicleParams identified = file_vehicle;
+  std::vector<std::string> keys;
+  auto take = [&](const std::string& key, const std::string& source, const ident::Estimate& e) {
+    const auto* spec = schema.find(key);
+    c.parameters.push_back({key, std::string(spec->unit), source, spec->numberOf(file_vehicle), e.value,
+                            e.std_error});
+    spec->number(identified) = e.value;
+    keys.push_back(key);
   };
+  // A curve: its formula keys as the platform result gives them, or its table (one row per
+  // knot, the file's value being the file's curve at that height).
+  const model::GroundEffectModel file_ge(file_vehicle);
+  const ident::IdentifyResult& platform = id.platform;
+  auto takeCurve = [&](const std::string& section, const std::string& name, const std::string& source) {
+    const std::string curve = "ground_effect." + section;
+    for (const auto& t : platform.tables) {
+      if (t.section != section) continue;
+      const auto columns = schema.columns(curve + ".table");  // heights, values
+      columns[0]->list(identified) = t.curve.heights_m;
+      columns[1]->list(identified).clear();
+      for (std::size_t j = 0; j < t.curve.values.size(); ++j) {
+        const double h = t.curve.heights_m[j];
+        c.parameters.push_back({fmt::format("{}(h = {:.3g} m)", name, h), columns[1]->unit.empty() ? "-" : std::string(columns[1]->unit), source,
+                                section == "additional_thrust" ? file_ge.thrustRatio(h) : file_ge.levelingCoefficient(h),
+                                t.curve.values[j].value, t.curve.values[j].std_error});
+        columns[1]->list(identified).push_back(t.curve.values[j].value);
+      }
+      keys.push_back(curve + ".table");
+      return;
+    }
+    for (const auto& p : platform.parameters) {
+      if (const auto* spec = schema.find(p.name); spec != nullptr && spec->curve == curve) take(p.name, source, p.estimate);
+    }
+  };
+  const ident::RotorFit& rotor = *id.rotor.fits.rotor;
   const std::string kStand = "single-rotor stand";
-  const std::string kLevel = "platform, level board";
-  const std::string kMix = "platform, rpm differences";
-  const std::string kTilt = "platform, tilted board";
   // k_T and k_I of the stand are shown but superseded by the platform's (the scale of M_G and
   // F_G belong to the platform's k_T).
   c.parameters.push_back({"rotor.k_T_N_per_rpm2 (stand, not used)", "N/rpm²", kStand,
                           file_vehicle.rotor.k_T_N_per_rpm2, rotor.k_T_N_per_rpm2.value,
                           rotor.k_T_N_per_rpm2.std_error});
-  set("rotor.J_R_kgm2", "kg·m²", kStand, v.rotor.J_R_kgm2,
-      rotor.J_R_kgm2 ? *rotor.J_R_kgm2 : ident::Estimate{file_vehicle.rotor.J_R_kgm2, 0.0});
-  set("throttle_curve.c2_rpm2", "rpm²", kStand, v.throttle.c2_rpm2, rotor.c2_rpm2);
-  set("throttle_curve.c1_rpm2", "rpm²", kStand, v.throttle.c1_rpm2, rotor.c1_rpm2);
-  set("throttle_curve.c0_rpm2", "rpm²", kStand, v.throttle.c0_rpm2, rotor.c0_rpm2);
-  set("rotor.k_T_N_per_rpm2", "N/rpm²", kLevel, v.rotor.k_T_N_per_rpm2,
-      f.additional_thrust ? f.additional_thrust->k_T_N_per_rpm2
-                          : f.additional_thrust_table->k_T_N_per_rpm2);
-  // A table: one row per knot, the file's value being the file's curve at that height.
-  const model::GroundEffectModel file_ge(file_vehicle);
-  auto setTable = [&](const std::string& name, const std::string& unit, const std::string& source,
-                      const ident::TableCurve& curve, model::HeightTableParams& field,
-                      bool thrust_curve) {
-    field = {curve.heights_m, {}};
-    for (std::size_t j = 0; j < curve.values.size(); ++j) {
-      const double h = curve.heights_m[j];
-      c.parameters.push_back({fmt::format("{}(h = {:.3g} m)", name, h), unit, source,
-                              thrust_curve ? file_ge.thrustRatio(h) : file_ge.levelingCoefficient(h),
-                              curve.values[j].value, curve.values[j].std_error});
-      field.values.push_back(curve.values[j].value);
+  // The stand's own keys (J_R, the throttle curve); J_R stays the file's when the speed steps
+  // did not determine it.
+  if (!rotor.J_R_kgm2) take("rotor.J_R_kgm2", kStand, {file_vehicle.rotor.J_R_kgm2, 0.0});
+  for (const auto& p : id.rotor.parameters) {
+    if (p.name != "rotor.k_T_N_per_rpm2" && p.name != "rotor.k_I_Nm_per_rpm2") take(p.name, kStand, p.estimate);
+  }
+  const auto& f = platform.fits;
+  take("rotor.k_T_N_per_rpm2", "platform, level board",
+       f.additional_thrust ? f.additional_thrust->k_T_N_per_rpm2 : f.additional_thrust_table->k_T_N_per_rpm2);
+  takeCurve("additional_thrust", "F_G", "platform, level board");
+  // The mixing coefficients: the platform's keys outside the curves, k_T aside.
+  for (const auto& p : platform.parameters) {
+    const auto* spec = schema.find(p.name);
+    if (spec != nullptr && spec->curve.empty() && p.name != "rotor.k_T_N_per_rpm2") {
+      take(p.name, "platform, rpm differences", p.estimate);
     }
-  };
-  if (const auto& t = f.additional_thrust) {
-    set("ground_effect.additional_thrust.g1_m2", "m²", kLevel, v.additional_thrust.g1_m2, t->g1_m2);
-    set("ground_effect.additional_thrust.g2_m2", "m²", kLevel, v.additional_thrust.g2_m2, t->g2_m2);
-  } else {
-    setTable("F_G", "-", kLevel, f.additional_thrust_table->F_G, v.additional_thrust.table, true);
   }
-  if (const auto& e = mixing.k_TX_N_per_rpm2) set("rotor.k_TX_N_per_rpm2", "N/rpm²", kMix, v.rotor.k_TX_N_per_rpm2, *e);
-  if (const auto& e = mixing.k_TY_N_per_rpm2) set("rotor.k_TY_N_per_rpm2", "N/rpm²", kMix, v.rotor.k_TY_N_per_rpm2, *e);
-  if (const auto& e = mixing.k_I_Nm_per_rpm2) set("rotor.k_I_Nm_per_rpm2", "N·m/rpm²", kMix, v.rotor.k_I_Nm_per_rpm2, *e);
-  if (const auto& l = f.leveling) {
-    set("ground_effect.leveling_torque.g3_m", "m", kTilt, v.leveling_torque.g3_m, l->g3_m);
-    set("ground_effect.leveling_torque.g4_m2", "m²", kTilt, v.leveling_torque.g4_m2, l->g4_m2);
-    set("ground_effect.leveling_torque.scale_m4", "m⁴", kTilt, v.leveling_torque.scale_m4, l->scale_m4);
-  } else {
-    setTable("M_G", "m", kTilt, f.leveling_table->M_G, v.leveling_torque.table, false);
-  }
+  takeCurve("leveling_torque", "M_G", "platform, tilted board");
+  model::VehicleParams v = model::mergeParameters(file_vehicle, identified, keys);
   v.name = file_vehicle.name + " (identified on the virtual rigs)";
   return v;
 }
