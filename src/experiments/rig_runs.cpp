@@ -107,7 +107,8 @@ report::Page rotorRigPage(const std::vector<sim::RotorStandRow>& rows, const std
 
 std::string calibrationText(const sim::CalibrationResult& res, const std::string& vehicle_name) {
   std::string s = fmt::format(
-      "Truth aerodynamics against the paper (FACTS.md), vehicle {}, default RotorAeroParams\n",
+      "Truth aerodynamics against the paper (docs/paper-facts.md), vehicle {}, default "
+      "RotorAeroParams\n",
       vehicle_name);
   s += fmt::format("{:<46} {:>10} {:>10}  {:<18} {}\n", "target", "paper", "ours", "tolerance", "result");
   std::size_t failed = 0;
@@ -125,7 +126,7 @@ report::Page calibrationPage(const sim::CalibrationResult& res, const std::strin
   report::Page page("Truth aerodynamics: calibration against the paper");
   page.addText(produced_by);
   const auto& cv = res.curves;
-  report::Table table{"Targets (FACTS.md) against the truth",
+  report::Table table{"Targets (docs/paper-facts.md) against the truth",
                       {"target", "unit", "paper", "ours", "tolerance", "result"},
                       {}};
   for (const auto& c : res.checks) {
@@ -133,7 +134,7 @@ report::Page calibrationPage(const sim::CalibrationResult& res, const std::strin
                           c.tolerance, c.pass ? "pass" : "FAIL"});
   }
   page.addTable(std::move(table));
-  // The paper's measured points (FACTS.md tables) as markers.
+  // The paper's measured points (docs/paper-facts.md tables) as markers.
   const std::vector<double> h15{0.36, 0.33, 0.31, 0.28, 0.22, 0.18, 0.16, 0.14, 0.13, 0.12, 0.11, 0.10};
   const std::vector<double> t15{0.0,    -0.03, -0.10, -0.14, -0.165, -0.215,
                                 -0.215, -0.20, -0.19, -0.17, -0.15,  -0.12};
@@ -156,12 +157,12 @@ report::Page calibrationPage(const sim::CalibrationResult& res, const std::strin
                 "h [m]",
                 "τ_y [N·m]",
                 {{"truth (virtual platform)", cv.h_m, cv.torque_15deg_Nm, "lines", ""},
-                 {"paper (measured, FACTS.md)", h15, t15, "markers", ""}}});
+                 {"paper (measured, docs/paper-facts.md)", h15, t15, "markers", ""}}});
   page.addPlot({"Leveling torque at 0.11 m against board tilt, 15,000 rpm",
                 "board tilt δ [deg]",
                 "τ_y [N·m]",
                 {{"truth (virtual platform)", cv.tilt_deg, cv.torque_011_Nm, "lines", ""},
-                 {"paper (measured, FACTS.md)", dtilt, ttilt, "markers", ""}}});
+                 {"paper (measured, docs/paper-facts.md)", dtilt, ttilt, "markers", ""}}});
   return page;
 }
 

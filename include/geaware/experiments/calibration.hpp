@@ -37,7 +37,7 @@ struct CalibrationSweeps {
   sim::PlatformParams platform;  ///< sensor noise, samples per setpoint
   sim::RotorStandParams stand;
   /// Tilts above this are left out of the leveling fit (the torque saturates above ≈ 10°,
-  /// FACTS.md) [deg].
+  /// docs/paper-facts.md) [deg].
   double tilt_limit_deg = 10.0;
   std::uint64_t seed = 1;  ///< rig noise; each rig draws from its own derived seed
   /// Identify F_G and M_G as tables at the swept heights (ident/table_fit.hpp) instead of the

@@ -2,14 +2,15 @@
 // Leveling torque from the quadrotor platform with a tilted board (paper, section "leveling
 // torque", eq. 14–15): the vehicle stays level, the board below it is tilted by δ about the
 // body y axis, and the ground pushes the vehicle towards the board's attitude. With the
-// platform's sign convention (FACTS.md: a positive tilt gives a negative torque, "leveling")
+// platform's sign convention (docs/paper-facts.md: a positive tilt gives a negative torque,
+// "leveling")
 //
 //   y_Wᵀτ_G = −M_G(h)·T·sin δ,   M_G(h) = scale·h/(h² + g3·h + g4)²,   T = k_T·Σn²,
 //
 // where τ_G is the measured torque minus the rotors' own τ_B = M·N² (eq. 2, with k_TY). The
 // shape (g3, g4) and the scale are fitted together with Ceres and a robust loss. Above about
-// 10° of tilt the measured torque stops growing (FACTS.md), so by default only tilts up to
-// max_tilt_deg are used.
+// 10° of tilt the measured torque stops growing (docs/paper-facts.md), so by default only tilts
+// up to max_tilt_deg are used.
 
 #include <string>
 #include <vector>
