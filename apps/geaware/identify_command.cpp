@@ -11,13 +11,13 @@
 #include <string>
 #include <vector>
 
+#include "geaware/experiments/identify_report.hpp"
 #include "geaware/ident/identify.hpp"
 #include "geaware/io/json.hpp"
 #include "geaware/io/provenance.hpp"
 #include "geaware/io/range.hpp"
 #include "geaware/io/vehicle_file.hpp"
 #include "geaware/io/vehicle_writer.hpp"
-#include "geaware/report/page.hpp"
 
 namespace geaware::cli {
 namespace {
@@ -151,20 +151,6 @@ io::Json toJson(const ident::IdentifyResult& r, const IdentifyOptions& opt) {
   return doc;
 }
 
-void writeReport(const ident::IdentifyResult& r, const IdentifyOptions& opt) {
-  report::Page page("geaware identify " + opt.kind + ": " + std::filesystem::path(opt.log).filename().string());
-  page.addText("Command: " + commandLine());
-  for (const auto& t : r.report_tables) page.addTable({t.title, t.header, t.rows});
-  for (const auto& p : r.plots) {
-    report::Plot plot{p.title, p.x_label, p.y_label, {}};
-    for (const auto& c : p.curves) plot.series.push_back({c.name, c.x, c.y, c.mode, c.dash});
-    page.addPlot(std::move(plot));
-  }
-  for (const auto& w : r.warnings) page.addText("Warning: " + w);
-  std::filesystem::create_directories(opt.report);
-  page.write(std::filesystem::path(opt.report) / "index.html");
-}
-
 int runIdentify(const IdentifyOptions& opt) {
   if (!opt.out.empty() && opt.kind == "correlations") {
     throw UsageError("--out: `identify correlations` fits no vehicle-file keys");
@@ -182,7 +168,11 @@ int runIdentify(const IdentifyOptions& opt) {
     for (const auto& n : merged.notes) std::cerr << "geaware: note: " << opt.out << ": " << n << "\n";
   }
   if (!opt.json.empty()) io::writeJson(opt.json, toJson(r, opt));
-  if (!opt.report.empty()) writeReport(r, opt);
+  if (!opt.report.empty()) {
+    (void)experiments::writeIdentifyReport(
+        r, opt.report, "geaware identify " + opt.kind + ": " + std::filesystem::path(opt.log).filename().string(),
+        commandLine());
+  }
   return 0;
 }
 

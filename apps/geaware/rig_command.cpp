@@ -20,8 +20,6 @@
 #include "geaware/io/provenance.hpp"
 #include "geaware/io/range.hpp"
 #include "geaware/io/vehicle_file.hpp"
-#include "geaware/report/page.hpp"
-#include "geaware/sim/rigs.hpp"
 
 namespace geaware::cli {
 namespace {
@@ -75,24 +73,10 @@ class Progress {
   bool shown_ = false;
 };
 
-std::filesystem::path reportDir(const std::string& dir) {
-  const std::filesystem::path p(dir);
-  if (std::filesystem::exists(p) && !std::filesystem::is_directory(p)) {
-    throw std::runtime_error("--report " + dir + ": exists and is not a directory");
-  }
-  std::filesystem::create_directories(p);
-  return p;
-}
-
 void writePage(const report::Page& page, const std::string& dir, const std::string& stem, bool png,
                int png_height_px) {
-  const auto html = reportDir(dir) / (stem + ".html");  // also makes DIR
-  page.write(html);
-  std::cerr << "geaware: wrote " << html.string() << "\n";
-  if (png) {
-    const auto file = std::filesystem::path(dir) / (stem + ".png");
-    report::exportPng(html, file, 1200, png_height_px);
-    std::cerr << "geaware: wrote " << file.string() << "\n";
+  for (const auto& f : experiments::writeRigPage(page, dir, stem, png, png_height_px)) {
+    std::cerr << "geaware: wrote " << f.string() << "\n";
   }
 }
 

@@ -166,4 +166,19 @@ report::Page calibrationPage(const sim::CalibrationResult& res, const std::strin
   return page;
 }
 
+std::vector<std::filesystem::path> writeRigPage(const report::Page& page, const std::filesystem::path& dir,
+                                                const std::string& stem, bool png, int png_height_px) {
+  if (std::filesystem::exists(dir) && !std::filesystem::is_directory(dir)) {
+    throw std::runtime_error("--report " + dir.string() + ": exists and is not a directory");
+  }
+  std::filesystem::create_directories(dir);
+  std::vector<std::filesystem::path> written{dir / (stem + ".html")};
+  page.write(written.back());
+  if (png) {
+    written.push_back(dir / (stem + ".png"));
+    report::exportPng(written.front(), written.back(), 1200, png_height_px);
+  }
+  return written;
+}
+
 }  // namespace geaware::experiments

@@ -5,6 +5,7 @@
 // command line); nothing here opens a file or prints.
 
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <string>
@@ -77,5 +78,11 @@ struct RotorRigResult {
 /// The calibration page: the targets' table and the truth's curves beside the paper's points.
 [[nodiscard]] report::Page calibrationPage(const sim::CalibrationResult& result,
                                            const std::string& produced_by);
+
+/// Writes `page` as DIR/STEM.html (DIR created; an existing non-directory is an error) and,
+/// with `png`, DIR/STEM.png at 1200 × png_height_px through headless Chromium. Returns the
+/// files written.
+std::vector<std::filesystem::path> writeRigPage(const report::Page& page, const std::filesystem::path& dir,
+                                                const std::string& stem, bool png, int png_height_px);
 
 }  // namespace geaware::experiments
