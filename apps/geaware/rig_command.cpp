@@ -1,5 +1,6 @@
 // `geaware rig platform|rotor|calibrate`: the virtual test rigs (sim/rigs.hpp) writing CSV
-// logs like the paper's rigs, and the calibration of the truth aerodynamics against FACTS.md.
+// logs like the paper's rigs, and the calibration of the truth aerodynamics against the paper's
+// measurements (docs/paper-facts.md).
 // Thin: parse, call experiments/rig_runs.hpp, write the rows, the JSON and the pages.
 
 #include "rig_command.hpp"
