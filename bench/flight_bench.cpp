@@ -49,7 +49,7 @@ void fly(benchmark::State& state, const FlightScenario& s) {
   double wall = 0.0;
   for (auto _ : state) {
     std::unique_ptr<CsvFlightLog> log;
-    if (with_log) log = std::make_unique<CsvFlightLog>(file);
+    if (with_log) log = std::make_unique<CsvFlightLog>(file, s.vehicle);
     const FlightResult r = geaware::experiments::runFlight(s, log.get());
     if (r.crash) {
       state.SkipWithError(("crashed: " + r.crash_description).c_str());

@@ -3,13 +3,10 @@
 
 #include "bench_command.hpp"
 
-#include <unistd.h>
-
 #include <fmt/format.h>
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <stdexcept>
@@ -18,7 +15,9 @@
 
 #include "geaware/experiments/campaign.hpp"
 #include "geaware/experiments/campaign_report.hpp"
+#include "geaware/experiments/campaign_summary.hpp"
 #include "geaware/io/vehicle_file.hpp"
+#include "progress.hpp"
 
 namespace geaware::cli {
 namespace {
@@ -37,40 +36,11 @@ struct BenchOptions {
   bool no_turbulence = false;
   std::string ground_effect = "paper";  ///< form the calibration identifies F_G and M_G in
   bool check = false;
+  bool png = false;
+  bool quiet = false;
 };
 
-/// Progress on stderr: stage messages on their own lines; the per-flight counter overwrites
-/// itself on a terminal and is printed every tenth flight otherwise.
-class Progress {
- public:
-  Progress() : tty_(::isatty(STDERR_FILENO) == 1) {}
-  void operator()(const std::string& m) {
-    const bool counter = !m.empty() && m.front() == '[';
-    if (counter) {
-      if (tty_) {
-        std::cerr << "\r\033[K" << m << std::flush;
-        pending_ = true;
-      } else if (++count_ % 10 == 0 || m.find("CRASH") != std::string::npos) {
-        std::cerr << m << "\n";
-      }
-      return;
-    }
-    if (pending_) std::cerr << "\n";
-    pending_ = false;
-    std::cerr << "geaware bench: " << m << "\n";
-  }
-  void end() {
-    if (pending_) std::cerr << "\n";
-    pending_ = false;
-  }
-
- private:
-  bool tty_;
-  bool pending_ = false;
-  int count_ = 0;
-};
-
-int runBench(const BenchOptions& o, const std::string& command) {
+int runBench(const BenchOptions& o) {
   experiments::CampaignOptions c;
   c.vehicle = o.vehicle.empty() ? io::builtinVehicle() : io::loadVehicleFile(o.vehicle);
   c.seeds = o.seeds;
@@ -92,14 +62,16 @@ int runBench(const BenchOptions& o, const std::string& command) {
   c.calibration.tables = o.ground_effect == "table";
   if (o.truth_mismatch) c.mismatch = experiments::defaultTruthMismatch();
   c.collect_series = !o.report.empty();
-  auto progress = std::make_shared<Progress>();
-  c.progress = [progress](const std::string& m) { (*progress)(m); };
-
+  TerminalProgress progress("geaware bench", o.quiet);
+  c.progress = &progress;
   const experiments::CampaignResult r = experiments::runCampaign(c);
-  progress->end();
+  progress.end();
+  std::vector<std::uint64_t> seeds;
+  for (int k = 0; k < o.seeds; ++k) seeds.push_back(o.first_seed + static_cast<std::uint64_t>(k));
+  const io::RunInfo run = runInfo(seeds, {o.vehicle});
 
   std::FILE* human = o.json == "-" ? stderr : stdout;
-  fmt::print(human, "{}\n", command);
+  fmt::print(human, "{}\n", commandLine());
   if (c.calibration.tables) {
     fmt::print(human, "calibration: F_G and M_G identified as tables (--ground-effect table)\n");
   }
@@ -113,19 +85,10 @@ int runBench(const BenchOptions& o, const std::string& command) {
   fmt::print(human, "{}", experiments::formatCampaign(r));
   std::fflush(human);
 
-  if (!o.json.empty()) {
-    const std::string doc = experiments::campaignJson(r);
-    if (o.json == "-") {
-      std::cout << doc << std::flush;
-    } else {
-      std::ofstream f(o.json);
-      if (!(f << doc)) throw std::runtime_error(o.json + ": cannot write the JSON output");
-      std::cerr << "geaware bench: wrote " << o.json << "\n";
-    }
-  }
+  if (!o.json.empty()) writeJsonOutput(o.json, experiments::campaignJson(r), run);
   if (!o.report.empty()) {
-    const auto html = experiments::writeCampaignReport(r, o.report, command);
-    std::cerr << "geaware bench: wrote " << html.string() << "\n";
+    const auto html = experiments::writeCampaignReport(r, o.report, run, o.png);
+    std::cerr << "geaware bench: wrote " << html.string() << (o.png ? " and bench.png" : "") << "\n";
   }
   if (o.check) {
     for (const auto& chk : r.checks) {
@@ -172,15 +135,12 @@ Runner addBenchCommand(CLI::App& app) {
       ->check(CLI::IsMember({"paper", "table"}))
       ->capture_default_str();
   cmd->add_flag("--check", o->check, "exit with status 3 when an acceptance check fails");
-  return [o, cmd]() {
-    std::string command = "geaware bench";
-    for (const auto* opt : cmd->get_options()) {
-      if (opt->count() == 0 || opt->get_name() == "--help") continue;
-      command += " " + opt->get_name();
-      for (const auto& v : opt->results()) command += " " + v;
-    }
-    return runBench(*o, command);
-  };
+  cmd->add_flag("--png", o->png, "with --report: also the whole page as DIR/bench.png (Chromium)");
+  cmd->add_flag("--quiet", o->quiet, "no progress on stderr");
+  cmd->parse_complete_callback([o]() {
+    if (o->png && o->report.empty()) throw CLI::ValidationError("--png", "--png needs --report DIR");
+  });
+  return [o]() { return runBench(*o); };
 }
 
 }  // namespace geaware::cli

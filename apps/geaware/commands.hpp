@@ -1,12 +1,18 @@
 #pragma once
 // Subcommands of the geaware CLI. Each registers its options on the app and returns the
-// function that runs it; the work itself lives in the libraries.
+// function that runs it; the work itself lives in the libraries. One convention for all:
+// `--json -` puts only the JSON document on stdout (human text goes to stderr then), every JSON
+// document carries its provenance, usage errors exit with status 2, bad input with 1.
 
+#include <cstdint>
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
+
+#include "geaware/io/provenance.hpp"
 
 namespace geaware::cli {
 
@@ -22,6 +28,13 @@ class UsageError : public std::invalid_argument {
 /// The command line this process was started with, shell-quoted (for the provenance of every
 /// output); set once by main before any command runs.
 [[nodiscard]] const std::string& commandLine();
+
+/// What this run was given: the command line, `seeds` and the files in `inputs` (empty paths
+/// are left out).
+[[nodiscard]] io::RunInfo runInfo(std::vector<std::uint64_t> seeds, std::vector<std::string> inputs);
+
+/// Writes `doc` with "provenance" (io::provenanceJson(run)) added to `path` ("-": stdout).
+void writeJsonOutput(const std::string& path, io::Json doc, const io::RunInfo& run);
 
 /// `geaware model`: the controller-side ground-effect model tabulated over heights.
 Runner addModelCommand(CLI::App& app);

@@ -8,7 +8,6 @@
 
 #include "bench_command.hpp"
 #include "commands.hpp"
-#include "geaware/io/provenance.hpp"
 #include "fly_command.hpp"
 #include "identify_command.hpp"
 #include "rig_command.hpp"
@@ -17,7 +16,23 @@ namespace geaware::cli {
 namespace {
 std::string g_command_line;
 }  // namespace
+
 const std::string& commandLine() { return g_command_line; }
+
+io::RunInfo runInfo(std::vector<std::uint64_t> seeds, std::vector<std::string> inputs) {
+  io::RunInfo run{g_command_line, std::move(seeds), {}};
+  for (auto& f : inputs) {
+    if (!f.empty()) run.input_files.push_back(std::move(f));
+  }
+  return run;
+}
+
+void writeJsonOutput(const std::string& path, io::Json doc, const io::RunInfo& run) {
+  doc["provenance"] = io::provenanceJson(run);
+  io::writeJson(path, doc);
+  if (path != "-") std::cerr << "geaware: wrote " << path << "\n";
+}
+
 }  // namespace geaware::cli
 
 int main(int argc, char** argv) {
@@ -46,6 +61,9 @@ int main(int argc, char** argv) {
   }
   try {
     return run();
+  } catch (const geaware::cli::UsageError& e) {
+    std::cerr << "geaware: usage error: " << e.what() << "\n";
+    return 2;
   } catch (const std::exception& e) {
     std::cerr << "geaware: error: " << e.what() << "\n";
     return 1;

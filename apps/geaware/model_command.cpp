@@ -1,12 +1,13 @@
 // `geaware model`: the controller-side ground-effect model per height.
 
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "commands.hpp"
 #include "geaware/io/range.hpp"
@@ -27,42 +28,42 @@ struct Row {
   double h, f_g, m_g, jx, jy, dx, dy, n_hover;
 };
 
-model::VehicleParams loadVehicle(const std::string& path) {
-  return path.empty() ? io::builtinVehicle() : io::loadVehicleFile(path);
-}
+/// Column keys (CSV header and JSON keys), in Row order.
+constexpr const char* kKeys[] = {"h_m",     "F_G",           "M_G_m",         "Jx_kgm2",
+                                 "Jy_kgm2", "d_x_N_per_mps", "d_y_N_per_mps", "n_hover_rpm"};
 
-void printTable(const std::vector<Row>& rows, const model::VehicleParams& p) {
-  fmt::print("vehicle {} (m = {} kg, b = {} m); h = rotor-plane height above ground\n", p.name,
+void printTable(std::FILE* out, const std::vector<Row>& rows, const model::VehicleParams& p) {
+  fmt::print(out, "vehicle {} (m = {} kg, b = {} m); h = rotor-plane height above ground\n", p.name,
              p.mass_kg, p.diagonal_rotor_distance_m);
-  fmt::print("{:>8} {:>8} {:>10} {:>11} {:>11} {:>9} {:>9} {:>10}\n", "h [m]", "F_G [-]",
+  fmt::print(out, "{:>8} {:>8} {:>10} {:>11} {:>11} {:>9} {:>9} {:>10}\n", "h [m]", "F_G [-]",
              "M_G [m]", "J'x [kgm2]", "J'y [kgm2]", "d_x [Ns/m]", "d_y [Ns/m]", "n_hov [rpm]");
   for (const auto& r : rows) {
-    fmt::print("{:8.3f} {:8.4f} {:10.5f} {:11.6f} {:11.6f} {:9.4f} {:9.4f} {:10.0f}\n", r.h, r.f_g,
-               r.m_g, r.jx, r.jy, r.dx, r.dy, r.n_hover);
+    fmt::print(out, "{:8.3f} {:8.4f} {:10.5f} {:11.6f} {:11.6f} {:9.4f} {:9.4f} {:10.0f}\n", r.h,
+               r.f_g, r.m_g, r.jx, r.jy, r.dx, r.dy, r.n_hover);
   }
 }
 
-void printCsv(const std::vector<Row>& rows, std::FILE* out) {
-  fmt::print(out, "h_m,F_G,M_G_m,Jx_kgm2,Jy_kgm2,d_x_N_per_mps,d_y_N_per_mps,n_hover_rpm\n");
+void printCsv(std::FILE* out, const std::vector<Row>& rows) {
+  fmt::print(out, "{}\n", fmt::join(kKeys, ","));
   for (const auto& r : rows) {
     fmt::print(out, "{},{},{},{},{},{},{},{}\n", r.h, r.f_g, r.m_g, r.jx, r.jy, r.dx, r.dy, r.n_hover);
   }
 }
 
-std::string toJson(const std::vector<Row>& rows, const model::VehicleParams& p) {
-  std::string s = fmt::format("{{\"vehicle\":\"{}\",\"rows\":[", p.name);
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const auto& r = rows[i];
-    s += fmt::format(
-        "{}{{\"h_m\":{},\"F_G\":{},\"M_G_m\":{},\"Jx_kgm2\":{},\"Jy_kgm2\":{},"
-        "\"d_x_N_per_mps\":{},\"d_y_N_per_mps\":{},\"n_hover_rpm\":{}}}",
-        i ? "," : "", r.h, r.f_g, r.m_g, r.jx, r.jy, r.dx, r.dy, r.n_hover);
+io::Json toJson(const std::vector<Row>& rows, const model::VehicleParams& p) {
+  io::Json doc = {{"vehicle", p.name}, {"rows", io::Json::array()}};
+  for (const auto& r : rows) {
+    const double v[] = {r.h, r.f_g, r.m_g, r.jx, r.jy, r.dx, r.dy, r.n_hover};
+    io::Json row;
+    for (std::size_t i = 0; i < std::size(kKeys); ++i) row[kKeys[i]] = v[i];
+    doc["rows"].push_back(std::move(row));
   }
-  return s + "]}\n";
+  return doc;
 }
 
 int runModel(const ModelOptions& o) {
-  const model::VehicleModel vehicle(loadVehicle(o.vehicle));
+  const model::VehicleModel vehicle(o.vehicle.empty() ? io::builtinVehicle()
+                                                      : io::loadVehicleFile(o.vehicle));
   const io::Range range = io::parseRange(o.heights, "--heights", 100'000);
   if (range.from < 0.0) throw std::invalid_argument("--heights '" + o.heights + "': heights must be ≥ 0 m");
 
@@ -80,21 +81,14 @@ int runModel(const ModelOptions& o) {
         "evaluated at {} m\n",
         vehicle.params().min_rotor_plane_height_m, vehicle.params().min_rotor_plane_height_m);
   }
-
+  // With --json - stdout carries the JSON document alone; the table goes to stderr.
+  std::FILE* human = o.json == "-" ? stderr : stdout;
   if (o.format == "csv") {
-    printCsv(rows, stdout);
+    printCsv(human, rows);
   } else {
-    printTable(rows, vehicle.params());
+    printTable(human, rows, vehicle.params());
   }
-  if (!o.json.empty()) {
-    const std::string doc = toJson(rows, vehicle.params());
-    if (o.json == "-") {
-      std::cout << doc;
-    } else {
-      std::ofstream f(o.json);
-      if (!(f << doc)) throw std::runtime_error(o.json + ": cannot write JSON output");
-    }
-  }
+  if (!o.json.empty()) writeJsonOutput(o.json, toJson(rows, vehicle.params()), runInfo({}, {o.vehicle}));
   return 0;
 }
 
@@ -112,7 +106,9 @@ Runner addModelCommand(CLI::App& app) {
   cmd->add_option("--format", opts->format, "output format")
       ->check(CLI::IsMember({"table", "csv"}))
       ->capture_default_str();
-  cmd->add_option("--json", opts->json, "also write the rows as one JSON object to FILE ('-': stdout)");
+  cmd->add_option("--json", opts->json,
+                  "also write the rows as one JSON object to FILE ('-': stdout, the table then "
+                  "goes to stderr)");
   return [opts] { return runModel(*opts); };
 }
 

@@ -1,5 +1,7 @@
 #include "geaware/experiments/campaign_report.hpp"
 
+#include "geaware/experiments/flight_plots.hpp"
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -11,34 +13,17 @@
 namespace geaware::experiments {
 namespace {
 
+using plots::line;
+using plots::trajectoryPart;
+
 /// "ours ± std [paper]" in one cell.
 std::string withPaper(const MeanStd& m, double paper) {
   return fmt::format("{:.2f} ± {:.2f} [{:.2f}]", m.mean, m.std, paper);
 }
 
-report::Series line(std::string name, std::vector<double> x, std::vector<double> y,
-                    std::string dash = "") {
-  report::Series s;
-  s.name = std::move(name);
-  s.x = std::move(x);
-  s.y = std::move(y);
-  s.mode = "lines";
-  s.dash = std::move(dash);
-  return s;
-}
-
 std::string label(const TableOneExperiment& e) {
   return fmt::format("exp {} {}:{}", e.number, control::toString(e.acceleration),
                      control::toString(e.torque));
-}
-
-/// Only the ticks of the trajectory (t ≥ 0) of one series component.
-std::vector<double> trajectoryPart(const FlightSeries& s, const std::vector<double>& v) {
-  std::vector<double> out;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    if (s.t_s[i] >= 0.0) out.push_back(v[i]);
-  }
-  return out;
 }
 
 void addTables(report::Page& page, const CampaignResult& r) {
@@ -114,35 +99,26 @@ void addCalibrationPlots(report::Page& page, const CampaignResult& r) {
   page.addPlot(std::move(tq));
 }
 
+/// Each experiment keeps its colour on every plot of the page.
+plots::Flown flownOf(const CampaignResult& r, int number) {
+  return {label(r.experiment(number)->experiment), &r.series.at(number),
+          plots::color(static_cast<std::size_t>(number - 1))};
+}
+
 void addTrajectoryPlots(report::Page& page, const CampaignResult& r) {
   const std::vector<std::pair<std::string, std::vector<int>>> groups = {
       {"0.12 m, 1 m/s (exps 1–5)", {1, 2, 3, 4, 5}},
       {"0.18 m, 3 m/s (exps 6–7)", {6, 7}},
       {"1.75 m, 5 m/s (exp 8)", {8}}};
   for (const auto& [title, numbers] : groups) {
-    std::vector<const ExperimentSummary*> flown;
+    std::vector<plots::Flown> flown;
     for (int n : numbers) {
-      if (r.experiment(n) && r.series.count(n)) flown.push_back(r.experiment(n));
+      if (r.experiment(n) && r.series.count(n)) flown.push_back(flownOf(r, n));
     }
     if (flown.empty()) continue;
-    const FlightSeries& first = r.series.at(flown.front()->experiment.number);
-    report::Plot top{"Trajectories from above, " + title, "x [m]", "y [m]", {}};
-    report::Plot side{"Trajectories from the side, " + title, "x [m]", "z [m]", {}};
-    report::Plot err{"Position error ‖E_P‖ over time, " + title, "t [s]", "‖E_P‖ [cm]", {}};
-    top.series.push_back(line("reference", trajectoryPart(first, first.ref_m[0]),
-                              trajectoryPart(first, first.ref_m[1]), "dash"));
-    side.series.push_back(line("reference", trajectoryPart(first, first.ref_m[0]),
-                               trajectoryPart(first, first.ref_m[2]), "dash"));
-    for (const auto* e : flown) {
-      const FlightSeries& s = r.series.at(e->experiment.number);
-      const std::string name = label(e->experiment);
-      top.series.push_back(line(name, trajectoryPart(s, s.true_m[0]), trajectoryPart(s, s.true_m[1])));
-      side.series.push_back(line(name, trajectoryPart(s, s.true_m[0]), trajectoryPart(s, s.true_m[2])));
-      err.series.push_back(line(name, trajectoryPart(s, s.t_s), trajectoryPart(s, s.err_cm)));
-    }
-    page.addPlot(std::move(top));
-    page.addPlot(std::move(side));
-    page.addPlot(std::move(err));
+    page.addPlot(plots::topView("Trajectories from above, " + title, flown));
+    page.addPlot(plots::sideView("Trajectories from the side, " + title, flown));
+    page.addPlot(plots::errorPlot("Position error ‖E_P‖ over time, " + title, flown));
   }
 }
 
@@ -152,23 +128,27 @@ void addHoverPlots(report::Page& page, const CampaignResult& r) {
                              "acceleration compensation: model)",
                              r.seeds),
                  "true rotor-plane height h [m]", "E [deg]", {}};
-  for (const auto& c : r.hover) {
+  for (std::size_t k = 0; k < r.hover.size(); ++k) {
+    const auto& c = r.hover[k];
     std::vector<double> h, e;
     for (const auto& b : c.bins) {
       h.push_back(b.centre_m());
       e.push_back(b.angle_err_deg);
     }
-    report::Series s = line(std::string("torque ") + control::toString(c.torque), h, e);
+    report::Series s =
+        line(std::string("torque ") + control::toString(c.torque), h, e, "", plots::color(k));
     s.mode = "lines+markers";
     p.series.push_back(std::move(s));
   }
   page.addPlot(std::move(p));
   if (!r.hover_series.empty()) {
     report::Plot raw{"Hover descent, first seed: angle error over time", "t [s]", "E [deg]", {}};
-    for (const auto& hs : r.hover_series) {
+    for (std::size_t k = 0; k < r.hover_series.size(); ++k) {
+      const auto& hs = r.hover_series[k];
       raw.series.push_back(line(std::string("torque ") + control::toString(hs.torque),
                                 trajectoryPart(hs.series, hs.series.t_s),
-                                trajectoryPart(hs.series, hs.series.att_err_deg)));
+                                trajectoryPart(hs.series, hs.series.att_err_deg), "",
+                                plots::color(k)));
     }
     page.addPlot(std::move(raw));
   }
@@ -186,32 +166,21 @@ void addRotorPlots(report::Page& page, const CampaignResult& r) {
   if (pick == 0) return;
   const FlightSeries& s = r.series.at(pick);
   const std::string name = label(r.experiment(pick)->experiment);
-  report::Plot rotors{"Rotor speeds (truth), " + name + ", first seed", "t [s]", "n [rpm]", {}};
-  for (std::size_t i = 0; i < 4; ++i) {
-    rotors.series.push_back(line(fmt::format("rotor {}", i + 1), s.t_s, s.n_rpm[i]));
-  }
-  page.addPlot(std::move(rotors));
-  report::Plot torques{"Body torques: command τ_des and rotor estimate τ̂_B, " + name, "t [s]",
-                       "τ [N·m]", {}};
-  const char* axis[3] = {"x", "y", "z"};
-  for (std::size_t i = 0; i < 3; ++i) {
-    torques.series.push_back(line(fmt::format("τ_des,{}", axis[i]), s.t_s, s.tau_des_Nm[i]));
-    torques.series.push_back(line(fmt::format("τ̂_B,{}", axis[i]), s.t_s, s.tau_hat_Nm[i], "dot"));
-  }
-  page.addPlot(std::move(torques));
+  page.addPlot(plots::rotorPlot("Rotor speeds (truth), " + name + ", first seed", s));
+  page.addPlot(plots::torquePlot("Body torques: command τ_des and rotor estimate τ̂_B, " + name, s));
 }
 
 }  // namespace
 
-report::Page campaignPage(const CampaignResult& r, const std::string& command) {
+report::Page campaignPage(const CampaignResult& r, const io::RunInfo& run) {
   report::Page page("geaware bench: the paper's Table I and hover experiment in simulation");
-  page.addText("Produced by: " + command);
   page.addText(fmt::format(
       "{} flights ({:.0f} s simulated) on {} thread{}, wall time {:.1f} s. Every controller runs on "
       "the parameters identified from the virtual rigs; the truth is the simulator's per-rotor "
       "aerodynamics. The paper's numbers are real flights. See docs/results.md.",
       r.flights, r.simulated_s, r.threads, r.threads == 1 ? "" : "s", r.wall_s));
   addTables(page, r);
+  page.addTable(plots::provenanceTable(run));
   page.addHeading("Calibration");
   addCalibrationPlots(page, r);
   if (!r.series.empty()) {
@@ -230,13 +199,14 @@ report::Page campaignPage(const CampaignResult& r, const std::string& command) {
 }
 
 std::filesystem::path writeCampaignReport(const CampaignResult& r, const std::filesystem::path& dir,
-                                          const std::string& command) {
+                                          const io::RunInfo& run, bool png) {
   if (std::filesystem::exists(dir) && !std::filesystem::is_directory(dir)) {
     throw std::runtime_error("report: " + dir.string() + " exists and is not a directory");
   }
   std::filesystem::create_directories(dir);
   const auto html = dir / "bench.html";
-  campaignPage(r, command).write(html);
+  campaignPage(r, run).write(html);
+  if (png) report::exportPagePng(html, dir / "bench.png");
   return html;
 }
 

@@ -1,6 +1,12 @@
 #include "geaware/experiments/flight_log.hpp"
 
+#include <Eigen/Geometry>
+#include <cerrno>
 #include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+#include <string>
 
 #include "geaware/model/units.hpp"
 
@@ -61,14 +67,46 @@ const std::vector<std::string_view>& flightLogColumns() {
       "n_meas_3_rpm", "n_meas_4_rpm", "n_true_1_rpm", "n_true_2_rpm", "n_true_3_rpm",
       "n_true_4_rpm", "throttle_1", "throttle_2", "throttle_3", "throttle_4",
       // control::ControllerFlag bits
-      "flags"};
+      "flags",
+      // what `geaware identify flight` reads (docs/identification.md, "Flight log"): the
+      // controller-side height, velocity, attitude and rotor telemetry, and the external
+      // acceleration ã_ext = R_WB·f_B − z_B·k_T·Σn²/m of the nominal vehicle (unfiltered)
+      "h_m", "vx_mps", "vy_mps", "vz_mps", "qw", "qx", "qy", "qz", "ax_ext_mps2", "ay_ext_mps2",
+      "az_ext_mps2", "n1_rpm", "n2_rpm", "n3_rpm", "n4_rpm"};
   return columns;
 }
 
-CsvFlightLog::CsvFlightLog(const std::filesystem::path& file)
-    : path_(file), csv_(file, flightLogColumns()) {}
+namespace {
 
-CsvFlightLog::~CsvFlightLog() = default;
+/// Opens (truncates) `file` and writes the comment lines that precede the header.
+std::FILE* openWithComment(const std::filesystem::path& file, std::string_view comment) {
+  std::FILE* f = std::fopen(file.c_str(), "wb");
+  if (f == nullptr) {
+    throw std::runtime_error(file.string() + ": cannot open for writing (" + std::strerror(errno) +
+                             ")");
+  }
+  std::string text(comment);
+  if (!text.empty() && text.back() != '\n') text += '\n';
+  if (!text.empty() && std::fwrite(text.data(), 1, text.size(), f) != text.size()) {
+    std::fclose(f);
+    throw std::runtime_error(file.string() + ": write failed");
+  }
+  return f;
+}
+
+}  // namespace
+
+CsvFlightLog::CsvFlightLog(const std::filesystem::path& file, const model::VehicleParams& vehicle,
+                           std::string_view header_comment)
+    : path_(file),
+      stream_(openWithComment(file, header_comment)),
+      csv_(stream_, file.string(), flightLogColumns()),
+      k_T_N_per_rpm2_(vehicle.rotor.k_T_N_per_rpm2),
+      mass_kg_(vehicle.mass_kg) {}
+
+CsvFlightLog::~CsvFlightLog() {
+  if (stream_ != nullptr) std::fclose(stream_);
+}
 
 void CsvFlightLog::onTick(const FlightTick& k) noexcept {
   RowWriter w(csv_);
@@ -112,11 +150,25 @@ void CsvFlightLog::onTick(const FlightTick& k) noexcept {
   for (double n : x.n_rpm) w.num(n);
   for (double t : k.throttle) w.num(t);
   w.integer(out.flags);
+  // The identification columns.
+  w.num(in.height_m);
+  w.vec3(in.estimate.v_W);
+  w.quat(in.estimate.q_WB);
+  const Eigen::Matrix3d R = in.estimate.q_WB.toRotationMatrix();
+  const double thrust_N = k_T_N_per_rpm2_ * in.rotor_speeds_rpm.squaredNorm();
+  w.vec3(R * in.accel_B - R.col(2) * (thrust_N / mass_kg_));
+  for (int i = 0; i < 4; ++i) w.num(in.rotor_speeds_rpm(i));
   w.end();
 }
 
 void CsvFlightLog::finish(const FlightResult& /*result*/) { close(); }
 
-void CsvFlightLog::close() { csv_.close(); }
+void CsvFlightLog::close() {
+  csv_.close();
+  if (stream_ == nullptr) return;
+  const int rc = std::fclose(stream_);
+  stream_ = nullptr;
+  if (rc != 0) throw std::runtime_error(path_.string() + ": write failed");
+}
 
 }  // namespace geaware::experiments

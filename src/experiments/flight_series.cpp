@@ -18,6 +18,7 @@ SeriesCollector::SeriesCollector(std::size_t ticks, int stride) : stride_(std::m
   reserve(s_.err_cm);
   reserve(s_.err_z_cm);
   reserve(s_.h_true_m);
+  reserve(s_.h_meas_m);
   reserve(s_.att_err_deg);
   for (auto& v : s_.n_rpm) reserve(v);
   for (auto& v : s_.tau_des_Nm) reserve(v);
@@ -42,6 +43,9 @@ void SeriesCollector::onTick(const FlightTick& k) noexcept {
   s_.err_cm.push_back((ref - p).norm() * 100.0);
   s_.err_z_cm.push_back((ref.z() - p.z()) * 100.0);
   s_.h_true_m.push_back(k.true_height_m);
+  s_.h_meas_m.push_back(k.controller_active && k.input.height_valid
+                            ? k.input.height_m
+                            : std::numeric_limits<double>::quiet_NaN());
   s_.att_err_deg.push_back(k.controller_active ? k.attitude_error_rad / model::kDegToRad
                                                : std::numeric_limits<double>::quiet_NaN());
   for (std::size_t i = 0; i < 4; ++i) s_.n_rpm[i].push_back(k.truth.n_rpm[i]);

@@ -201,10 +201,10 @@ std::string neuralCacheKey(const FlightScenario& base, const NeuralSettings& s) 
 
 NeuralBaseline prepareNeuralBaseline(const FlightScenario& base, const NeuralSettings& s,
                                      const std::filesystem::path& cache_dir, int jobs,
-                                     const std::function<void(const std::string&)>& progress) {
+                                     Progress* progress) {
   const auto start = std::chrono::steady_clock::now();
   auto say = [&](const std::string& m) {
-    if (progress) progress(m);
+    if (progress != nullptr) progress->message(m);
   };
   auto elapsed = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -247,7 +247,12 @@ NeuralBaseline prepareNeuralBaseline(const FlightScenario& base, const NeuralSet
   say(fmt::format("Neural-Lander: {} collection flights ({}:{}, {} m/s lemniscates)",
                   jobs_list.size(), control::toString(s.acceleration), control::toString(s.torque),
                   s.speed_mps));
-  const auto flights = runFlights(jobs_list, jobs);
+  const auto flights = runFlights(
+      jobs_list, jobs, [&](std::size_t done, std::size_t total, const FlightJob&, const FlightResult&) {
+        if (progress != nullptr) {
+          progress->update(static_cast<double>(done), static_cast<double>(total), "collection flights");
+        }
+      });
   neural::TrainingSet set;
   for (std::size_t k = 0; k < rows.size(); ++k) {
     if (flights[k].crash) {
@@ -263,7 +268,10 @@ NeuralBaseline prepareNeuralBaseline(const FlightScenario& base, const NeuralSet
 
   // 2. Training.
   say(fmt::format("Neural-Lander: training on {} rows ({} epochs)", nb.rows, s.train.epochs));
-  const neural::TrainResult trained = neural::train(set, s.train);
+  const neural::TrainResult trained =
+      neural::train(set, s.train, [&](int epoch, double /*train*/, double /*validation*/) {
+        if (progress != nullptr) progress->update(epoch, s.train.epochs, "epochs");
+      });
   nb.train_loss_N2 = trained.train_loss.empty() ? kNaN : trained.train_loss.back();
   nb.validation_loss_N2 = trained.validation_loss.empty() ? kNaN : trained.validation_loss.back();
   nb.network = std::make_shared<neural::ResidualNetwork>(trained.weights);

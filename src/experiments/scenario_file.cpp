@@ -182,7 +182,9 @@ FlightScenario parseScenarioYaml(std::string_view yaml_text, const std::string& 
   if (!ctx.problems.empty()) throw io::ConfigError(source, std::move(ctx.problems));
 
   // Whole-scenario checks (ranges, the wind's and mismatch's own validation), each at its key.
-  for (const auto& e : validate(s)) {
+  // The residual network of acceleration "neural" is not part of the file (the caller loads it,
+  // e.g. `fly --neural-weights`), so it is not required here; runFlight checks it.
+  for (const auto& e : validate(s, ScenarioStage::kFile)) {
     ctx.problem(ctx.lineOf(e.field), e.field, "got " + e.value + ", expected " + e.expected);
   }
   if (!ctx.problems.empty()) throw io::ConfigError(source, std::move(ctx.problems));

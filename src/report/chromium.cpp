@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <charconv>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -255,6 +256,24 @@ void exportPng(const fs::path& html_file, const fs::path& png_file, int width_px
                              png.string() + "' (exit code " + std::to_string(r.exit_code) +
                              (written ? "" : ", no PNG file written") + "): " + tail(r.err, 2000));
   }
+}
+
+void exportPagePng(const fs::path& html_file, const fs::path& png_file, int width_px) {
+  // The page measures itself once its scripts ran (data-geaware-height on <html>); the second
+  // run renders a window that tall, so the PNG holds the whole page, not its first screen.
+  const std::string dom = dumpDom(html_file);
+  constexpr std::string_view kKey = "data-geaware-height=\"";
+  const auto at = dom.find(kKey);
+  int height_px = 0;
+  if (at != std::string::npos) {
+    const char* begin = dom.data() + at + kKey.size();
+    (void)std::from_chars(begin, dom.data() + dom.size(), height_px);
+  }
+  if (height_px <= 0) {
+    throw std::runtime_error("report: '" + html_file.string() +
+                             "' did not report its height (not a geaware page?)");
+  }
+  exportPng(html_file, png_file, width_px, std::clamp(height_px + 16, 16, 10000));
 }
 
 }  // namespace geaware::report

@@ -34,53 +34,25 @@ std::string escapeHtml(std::string_view text) {
   return out;
 }
 
-std::string jsonString(std::string_view text) {
-  static constexpr std::string_view kHex = "0123456789abcdef";
+std::string scriptSafeJson(std::string_view json) {
   std::string out;
-  out.reserve(text.size() + 2);
-  out += '"';
-  for (const char c : text) {
-    const auto u = static_cast<unsigned char>(c);
+  out.reserve(json.size());
+  for (const char c : json) {
     switch (c) {
-      case '"':
-        out += "\\\"";
+      case '<':
+        out += "\\u003c";
         break;
-      case '\\':
-        out += "\\\\";
+      case '>':
+        out += "\\u003e";
         break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\r':
-        out += "\\r";
-        break;
-      case '\t':
-        out += "\\t";
+      case '&':
+        out += "\\u0026";
         break;
       default:
-        // Control characters must be escaped in JSON; < > & are escaped so that the data
-        // cannot close or comment out the <script> element that holds it (HTML spec 4.12.1.3).
-        if (u < 0x20 || c == '<' || c == '>' || c == '&') {
-          out += "\\u00";
-          out += kHex[u >> 4U];
-          out += kHex[u & 0xFU];
-        } else {
-          out += c;  // UTF-8 bytes pass through unchanged
-        }
+        out += c;
     }
   }
-  out += '"';
   return out;
-}
-
-std::string jsonNumber(double value) {
-  if (!std::isfinite(value)) return "null";
-  // std::to_chars without a precision gives the shortest round-trip form, e.g. "0.1", "1e-05",
-  // all of which are valid JSON numbers.
-  std::array<char, 32> buf{};
-  const auto [end, ec] = std::to_chars(buf.data(), buf.data() + buf.size(), value);
-  if (ec != std::errc{}) return "null";  // cannot happen: 32 chars hold any double
-  return {buf.data(), end};
 }
 
 }  // namespace geaware::report::detail

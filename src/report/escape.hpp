@@ -1,6 +1,6 @@
 #pragma once
-// Text escaping for the HTML writer: element content and attribute values, and JSON literals
-// that are embedded inside a <script> element.
+// Text escaping for the HTML writer: element content and attribute values, and JSON text
+// that is embedded inside a <script> element.
 
 #include <string>
 #include <string_view>
@@ -11,12 +11,8 @@ namespace geaware::report::detail {
 /// quoted attribute values.
 [[nodiscard]] std::string escapeHtml(std::string_view text);
 
-/// A JSON string literal (with quotes). Besides the JSON escapes, < > & are written as
-/// \u003c \u003e \u0026 so that no "</script" or "<!--" can appear in the embedded data.
-[[nodiscard]] std::string jsonString(std::string_view text);
-
-/// The shortest decimal text that reads back as exactly `value`; "null" when not finite
-/// (JSON has no NaN or infinity; plotly draws null as a gap).
-[[nodiscard]] std::string jsonNumber(double value);
+/// JSON text made safe inside a <script> element: < > & written as \u003c \u003e \u0026 (they
+/// occur only inside strings), so no "</script" or "<!--" can appear in the embedded data.
+[[nodiscard]] std::string scriptSafeJson(std::string_view json);
 
 }  // namespace geaware::report::detail

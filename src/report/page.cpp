@@ -13,6 +13,8 @@
 #include <type_traits>
 #include <utility>
 
+#include <nlohmann/json.hpp>
+
 #include "escape.hpp"
 
 #ifndef GEAWARE_PLOTLY_JS_BUILD_PATH
@@ -23,8 +25,7 @@ namespace geaware::report {
 namespace {
 
 using detail::escapeHtml;
-using detail::jsonNumber;
-using detail::jsonString;
+using detail::scriptSafeJson;
 
 constexpr std::array<std::string_view, 3> kModes = {"lines", "markers", "lines+markers"};
 constexpr std::array<std::string_view, 3> kDashes = {"", "dash", "dot"};
@@ -63,46 +64,45 @@ constexpr std::string_view kInitScript = R"js(
   specs.forEach(function (spec, i) {
     Plotly.newPlot('geaware-plot-' + i, spec.data, spec.layout, config);
   });
+  // The whole page's height, for a PNG of the whole page (report::exportPagePng).
+  document.documentElement.setAttribute('data-geaware-height',
+                                        String(document.documentElement.scrollHeight));
 })();
 )js";
 
-std::string axisType(AxisType t) { return t == AxisType::kLog ? "\"log\"" : "\"linear\""; }
+const char* axisType(AxisType t) { return t == AxisType::kLog ? "log" : "linear"; }
 
-// One plot as plotly's {data, layout} JSON.
-std::string plotJson(const Plot& plot) {
-  std::string out = "{\"data\":[";
-  for (std::size_t s = 0; s < plot.series.size(); ++s) {
-    const Series& series = plot.series[s];
-    if (s > 0) out += ',';
-    out += "{\"type\":\"scatter\",\"name\":" + jsonString(series.name) +
-           ",\"mode\":" + jsonString(series.mode);
-    if (!series.dash.empty()) out += ",\"line\":{\"dash\":" + jsonString(series.dash) + "}";
-    const auto numbers = [&out](const std::vector<double>& values) {
-      out += '[';
-      for (std::size_t i = 0; i < values.size(); ++i) {
-        if (i > 0) out += ',';
-        out += jsonNumber(values[i]);
-      }
-      out += ']';
-    };
-    out += ",\"x\":";
-    numbers(series.x);
-    out += ",\"y\":";
-    numbers(series.y);
-    out += '}';
+// One plot as plotly's {data, layout}; NaN becomes null, which plotly draws as a gap.
+nlohmann::ordered_json plotJson(const Plot& plot) {
+  nlohmann::ordered_json data = nlohmann::ordered_json::array();
+  for (const Series& series : plot.series) {
+    nlohmann::ordered_json trace = {
+        {"type", "scatter"}, {"name", series.name}, {"mode", series.mode}};
+    nlohmann::ordered_json style = nlohmann::ordered_json::object();
+    if (!series.dash.empty()) style["dash"] = series.dash;
+    if (!series.color.empty()) style["color"] = series.color;
+    if (!style.empty()) trace["line"] = style;
+    if (!series.color.empty()) trace["marker"] = {{"color", series.color}};
+    if (!series.fill.empty()) trace["fill"] = series.fill;
+    trace["x"] = series.x;
+    trace["y"] = series.y;
+    data.push_back(std::move(trace));
   }
-  out += "],\"layout\":{";
-  out += "\"title\":{\"text\":" + jsonString(plot.title) + "}";
-  out += ",\"xaxis\":{\"title\":{\"text\":" + jsonString(plot.x_label) +
-         "},\"type\":" + axisType(plot.x_axis) + ",\"zeroline\":false}";
-  out += ",\"yaxis\":{\"title\":{\"text\":" + jsonString(plot.y_label) +
-         "},\"type\":" + axisType(plot.y_axis) + ",\"zeroline\":false}";
-  out += ",\"height\":" + std::to_string(plot.height_px);
-  out += ",\"margin\":{\"l\":70,\"r\":30,\"t\":50,\"b\":60}";
-  out += ",\"font\":{\"family\":\"system-ui, 'DejaVu Sans', Arial, sans-serif\"}";
-  out += ",\"hovermode\":\"closest\"";
-  out += "}}";
-  return out;
+  nlohmann::ordered_json y_axis = {{"title", {{"text", plot.y_label}}},
+                                   {"type", axisType(plot.y_axis)},
+                                   {"zeroline", false}};
+  // Equal aspect: one metre is as long on the y axis as on the x axis (trajectories seen from
+  // above keep their shape).
+  if (plot.equal_aspect) y_axis.update({{"scaleanchor", "x"}, {"scaleratio", 1}});
+  nlohmann::ordered_json layout = {
+      {"title", {{"text", plot.title}}},
+      {"xaxis", {{"title", {{"text", plot.x_label}}}, {"type", axisType(plot.x_axis)}, {"zeroline", false}}},
+      {"yaxis", std::move(y_axis)},
+      {"height", plot.height_px},
+      {"margin", {{"l", 70}, {"r", 30}, {"t", 50}, {"b", 60}}},
+      {"font", {{"family", "system-ui, 'DejaVu Sans', Arial, sans-serif"}}},
+      {"hovermode", "closest"}};
+  return {{"data", std::move(data)}, {"layout", std::move(layout)}};
 }
 
 std::string tableHtml(const Table& table) {
@@ -192,6 +192,9 @@ void Page::addPlot(Plot plot) {
       throw std::invalid_argument(series + ": dash '" + s.dash +
                                   "' is not one of \"\" (solid), dash, dot");
     }
+    if (!s.fill.empty() && s.fill != "tozeroy") {
+      throw std::invalid_argument(series + ": fill '" + s.fill + "' is not one of \"\", tozeroy");
+    }
   }
   blocks_.emplace_back(std::move(plot));
 }
@@ -205,7 +208,7 @@ std::string Page::html(const std::string& plotly_js) const {
   }
 
   std::string body;
-  std::string plots_json = "[";
+  nlohmann::ordered_json plots = nlohmann::ordered_json::array();
   int plot_count = 0;
   for (const Block& block : blocks_) {
     std::visit(
@@ -221,14 +224,14 @@ std::string Page::html(const std::string& plotly_js) const {
             const std::string id = "geaware-plot-" + std::to_string(plot_count);
             body += "<figure class=\"plot\"><div class=\"plot-area\" id=\"" + id +
                     "\" style=\"height:" + std::to_string(b.height_px) + "px\"></div></figure>\n";
-            if (plot_count > 0) plots_json += ",\n";
-            plots_json += plotJson(b);
+            plots.push_back(plotJson(b));
             ++plot_count;
           }
         },
         block);
   }
-  plots_json += "]";
+  const std::string plots_json = scriptSafeJson(
+      plots.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace));
 
   std::string out;
   out.reserve(plotly_js.size() + body.size() + plots_json.size() + 4096);

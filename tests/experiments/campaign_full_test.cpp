@@ -11,6 +11,7 @@
 #include <string>
 
 #include "geaware/experiments/campaign.hpp"
+#include "geaware/experiments/campaign_summary.hpp"
 #include "geaware/io/vehicle_file.hpp"
 
 namespace geaware::experiments {

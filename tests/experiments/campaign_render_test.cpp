@@ -51,7 +51,7 @@ TEST(CampaignReport, EveryPlotIsDrawnInTheBrowser) {
   const fs::path dir = fs::temp_directory_path() /
                        ("geaware-campaign-report-" + std::to_string(::getpid()));
   fs::remove_all(dir);
-  const fs::path html = writeCampaignReport(r, dir, "campaign_render_test");
+  const fs::path html = writeCampaignReport(r, dir, io::RunInfo{"campaign_render_test", {1}, {}});
   ASSERT_TRUE(fs::exists(html));
   const std::string dom = report::dumpDom(html, 15000);
 

@@ -5,6 +5,7 @@
 // (label `browser`).
 
 #include "geaware/experiments/campaign.hpp"
+#include "geaware/experiments/campaign_summary.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -100,7 +101,7 @@ TEST(Calibration, TheControllerGetsTheIdentifiedParametersNotTheFile) {
 
 TEST(Campaign, JsonHasTheDocumentedShape) {
   const CampaignResult& r = serial();
-  const auto doc = geaware_test::json::Reader(campaignJson(r)).document();
+  const auto doc = geaware_test::json::Reader(campaignJson(r).dump()).document();
   const auto& exps = doc["experiments"].array();
   ASSERT_EQ(exps.size(), 2u);
   EXPECT_EQ(exps[0]["exp"].number(), 1.0);
@@ -179,7 +180,10 @@ TEST(Campaign, TwoJobsGiveResultsIdenticalToOne) {
     }
   }
   // Everything but the wall times is the same document.
-  auto strip = [](std::string j) { return j.substr(0, j.find(",\"seeds\":")); };
+  auto strip = [](io::Json j) {
+    for (const char* key : {"threads", "wall_s", "calibration_s", "neural_s", "flights_s"}) j.erase(key);
+    return j.dump();  // as text: NaN (a crash time that is not) is null on both sides
+  };
   EXPECT_TRUE(strip(campaignJson(a)) == strip(campaignJson(b)));
 }
 

@@ -223,11 +223,11 @@ TEST(Flight, SameScenarioAndSeedGiveBitIdenticalMetricsAndLog) {
   FlightResult a;
   FlightResult b;
   {
-    CsvFlightLog log(file_a);
+    CsvFlightLog log(file_a, s.vehicle);
     a = runFlight(s, &log);
   }
   {
-    CsvFlightLog log(file_b);
+    CsvFlightLog log(file_b, s.vehicle);
     b = runFlight(s, &log);
   }
   EXPECT_EQ(a.tracking.rmse_xy_m, b.tracking.rmse_xy_m);
@@ -398,7 +398,7 @@ TEST(FlightLog, OneRowPerControlTickWithEveryColumn) {
   FlightResult r;
   std::size_t rows = 0;
   {
-    CsvFlightLog log(file);
+    CsvFlightLog log(file, s.vehicle);
     r = runFlight(s, &log);
     rows = log.rows();
   }
@@ -434,7 +434,7 @@ TEST(FlightLog, OneRowPerControlTickWithEveryColumn) {
 }
 
 TEST(FlightLog, AnUnwritableFileIsAnErrorNamingIt) {
-  EXPECT_THROW(CsvFlightLog("/nonexistent-dir/log.csv"), std::runtime_error);
+  EXPECT_THROW(CsvFlightLog("/nonexistent-dir/log.csv", io::builtinVehicle()), std::runtime_error);
 }
 
 TEST(Flight, HoverDataIsBinnedByTrueHeight) {

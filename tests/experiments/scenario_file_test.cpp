@@ -147,6 +147,22 @@ TEST(ScenarioFile, WrongChoicesAndTypesAreNamed) {
   }
 }
 
+// The residual network of acceleration "neural" is not part of the file (`fly --neural-weights`
+// gives it): the file loads, and only flying it without a network is refused, naming it.
+TEST(ScenarioFile, ANeuralScenarioLoadsAndNeedsItsNetworkOnlyToFly) {
+  const auto s = parseScenarioYaml(replaced(lowText(), "acceleration: model ", "acceleration: neural "),
+                                   "s.yaml", sourceDir() / "config/scenarios");
+  EXPECT_EQ(s.controller.acceleration, geaware::control::AccelerationCompensation::kNeural);
+  EXPECT_FALSE(s.residual);
+  try {
+    (void)geaware::experiments::runFlight(s);
+    ADD_FAILURE() << "flew without a residual network";
+  } catch (const geaware::experiments::InvalidScenario& e) {
+    ASSERT_EQ(e.problems().size(), 1u);
+    EXPECT_EQ(e.problems()[0].field, "residual");
+  }
+}
+
 TEST(ScenarioFile, AnImpossibleTrajectoryIsRefusedWithTheReason) {
   // Ramps longer than the flight: the trajectory's own validation explains it.
   const auto p = problemsOf(replaced(lowText(), "ramp_time_s: 2.0", "ramp_time_s: 50.0"));

@@ -8,7 +8,7 @@
 //      torque compensations (experiments/table_one.hpp, hover_experiment.hpp), flown on a
 //      thread pool (experiments/flight_pool.hpp) with results identical to a serial run;
 //   4. the summary: Table I beside the paper's, the headline ratios and the acceptance checks
-//      of the issue, as text and as JSON.
+//      of the issue (text and JSON: experiments/campaign_summary.hpp).
 // The report page is experiments/campaign_report.hpp.
 //
 // Every flight's controller is built from the IDENTIFIED parameters; the truth is the vehicle
@@ -27,6 +27,7 @@
 #include "geaware/experiments/flight_series.hpp"
 #include "geaware/experiments/hover_experiment.hpp"
 #include "geaware/experiments/neural_baseline.hpp"
+#include "geaware/experiments/progress.hpp"
 #include "geaware/experiments/table_one.hpp"
 #include "geaware/model/vehicle_params.hpp"
 #include "geaware/sim/truth_params.hpp"
@@ -61,8 +62,8 @@ struct CampaignOptions {
   /// Collect decimated time series of each experiment's and hover curve's first seed (for the
   /// report).
   bool collect_series = false;
-  /// One-line progress messages (stage changes, each finished flight).
-  std::function<void(const std::string&)> progress;
+  /// Stage messages and the flight counter; null: silent.
+  Progress* progress = nullptr;
 };
 
 /// Ratios the paper headlines and the issue's acceptance criteria, each with its threshold.
@@ -110,11 +111,6 @@ struct CampaignResult {
 /// The acceptance checks that the experiments in `r` allow (computed by runCampaign).
 [[nodiscard]] std::vector<AcceptanceCheck> acceptanceChecks(const CampaignResult& r);
 
-/// Human-readable summary: calibration, Table I (ours mean ± std beside the paper's), the
-/// hover curves, the ratios and checks, the wall time.
-[[nodiscard]] std::string formatCampaign(const CampaignResult& r);
-
-/// The JSON document of docs/results.md: {"experiments":[…],"hover":[…],…}.
-[[nodiscard]] std::string campaignJson(const CampaignResult& r);
+// The text and JSON summaries: experiments/campaign_summary.hpp.
 
 }  // namespace geaware::experiments

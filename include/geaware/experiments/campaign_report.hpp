@@ -10,16 +10,18 @@
 #include <string>
 
 #include "geaware/experiments/campaign.hpp"
+#include "geaware/io/provenance.hpp"
 #include "geaware/report/page.hpp"
 
 namespace geaware::experiments {
 
-/// The page; `command` is printed at the top (how to reproduce it).
-[[nodiscard]] report::Page campaignPage(const CampaignResult& r, const std::string& command);
+/// The page, with the provenance of the run (how to reproduce it).
+[[nodiscard]] report::Page campaignPage(const CampaignResult& r, const io::RunInfo& run);
 
 /// Writes DIR/bench.html (creating DIR) and returns its path. Throws std::runtime_error when DIR
-/// exists and is not a directory or the page cannot be written.
+/// exists and is not a directory or the page cannot be written. With `png`, also the whole page
+/// as DIR/bench.png (headless Chromium).
 std::filesystem::path writeCampaignReport(const CampaignResult& r, const std::filesystem::path& dir,
-                                          const std::string& command);
+                                          const io::RunInfo& run, bool png = false);
 
 }  // namespace geaware::experiments

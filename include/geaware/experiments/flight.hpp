@@ -135,7 +135,13 @@ class InvalidScenario : public std::invalid_argument {
 /// "truth.", "controller.", "sensors.", "eskf.", "lattice.", "disturbances."; rates; and, when
 /// the rest is valid and check_feasibility is on, the trajectory's feasibility). Empty when
 /// the scenario can be flown.
-[[nodiscard]] std::vector<ScenarioProblem> validate(const FlightScenario& scenario);
+/// What validate() can expect to be filled in.
+enum class ScenarioStage {
+  kFile,    ///< as a scenario file gives it: the residual network comes later (--neural-weights)
+  kFlight,  ///< ready to fly: everything
+};
+[[nodiscard]] std::vector<ScenarioProblem> validate(const FlightScenario& scenario,
+                                                    ScenarioStage stage = ScenarioStage::kFlight);
 
 /// Number of controller flag bits (control::ControllerFlag) counted by the runner.
 inline constexpr int kControllerFlagBits = 7;
@@ -208,6 +214,25 @@ class FlightObserver {
   virtual void onTick(const FlightTick& tick) noexcept = 0;
   /// Called once after the loop, with the result.
   virtual void finish(const FlightResult& /*result*/) {}
+};
+
+/// Several observers behind one, called in the order they were added.
+class ObserverList final : public FlightObserver {
+ public:
+  /// Adds `o` (not owned; null is ignored).
+  void add(FlightObserver* o) {
+    if (o != nullptr) observers_.push_back(o);
+  }
+  [[nodiscard]] bool empty() const noexcept { return observers_.empty(); }
+  void onTick(const FlightTick& tick) noexcept override {
+    for (auto* o : observers_) o->onTick(tick);
+  }
+  void finish(const FlightResult& result) override {
+    for (auto* o : observers_) o->finish(result);
+  }
+
+ private:
+  std::vector<FlightObserver*> observers_;
 };
 
 /// Flies the scenario. Throws InvalidScenario before flying when validate() finds problems;

@@ -7,8 +7,10 @@
 // Times are written as the shortest text that reads back to the same double, every other value
 // as the shortest text that reads back to the same float32 (6–9 significant digits: far finer
 // than any sensor's noise, and half the size and formatting time of doubles). The same flight
-// gives a byte-identical file.
+// gives a byte-identical file. Comment lines (provenance) may precede the header; the columns
+// that `geaware identify flight` reads come last, so the log is its input as it stands.
 
+#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -25,9 +27,12 @@ namespace geaware::experiments {
 /// Streams the ticks of a flight to a CSV file.
 class CsvFlightLog final : public FlightObserver {
  public:
-  /// Opens (truncates) `file` and writes the header; throws std::runtime_error naming the file
-  /// when it cannot be opened.
-  explicit CsvFlightLog(const std::filesystem::path& file);
+  /// Opens (truncates) `file` and writes `header_comment` (lines starting "# ", e.g.
+  /// io::provenanceComment) and the header; throws std::runtime_error naming the file when it
+  /// cannot be opened. `vehicle` is the controller's (nominal) vehicle: its mass and k_T give the
+  /// external-acceleration columns that `geaware identify flight` reads.
+  CsvFlightLog(const std::filesystem::path& file, const model::VehicleParams& vehicle,
+               std::string_view header_comment = {});
   ~CsvFlightLog() override;
   CsvFlightLog(const CsvFlightLog&) = delete;
   CsvFlightLog& operator=(const CsvFlightLog&) = delete;
@@ -44,7 +49,10 @@ class CsvFlightLog final : public FlightObserver {
 
  private:
   std::filesystem::path path_;
-  io::CsvWriter csv_;  // buffered; rows are formatted into its fixed buffer
+  std::FILE* stream_ = nullptr;  // owned; the comment lines are written before the header
+  io::CsvWriter csv_;            // buffered; rows are formatted into its fixed buffer
+  double k_T_N_per_rpm2_;
+  double mass_kg_;
 };
 
 }  // namespace geaware::experiments

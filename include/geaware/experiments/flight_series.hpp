@@ -1,5 +1,5 @@
 #pragma once
-// Time series of one flight for the campaign's report (trajectory, errors, attitude error,
+// Time series of one flight for the reports of `fly` and the campaign (trajectory, errors, attitude error,
 // rotor speeds, torques), decimated to keep the page light: one point every `stride` control
 // ticks (every 4th: 50 Hz at the 200 Hz control rate). A FlightObserver that reserves its memory
 // up front and never allocates inside the loop.
@@ -19,6 +19,7 @@ struct FlightSeries {
   std::vector<double> err_cm;                 ///< ‖reference − truth‖ [cm]
   std::vector<double> err_z_cm;               ///< reference z − true z [cm]
   std::vector<double> h_true_m;               ///< true rotor-plane height [m]
+  std::vector<double> h_meas_m;               ///< ranger height handed to the controller [m] (NaN invalid)
   std::vector<double> att_err_deg;            ///< desired vs true attitude [deg] (NaN inactive)
   std::array<std::vector<double>, 4> n_rpm;   ///< true rotor speeds, mixer order [rpm]
   std::array<std::vector<double>, 3> tau_des_Nm;  ///< torque command, body [N·m]

@@ -24,6 +24,7 @@
 
 #include "geaware/control/controller_params.hpp"
 #include "geaware/experiments/flight.hpp"
+#include "geaware/experiments/progress.hpp"
 #include "geaware/neural/residual_network.hpp"
 #include "geaware/neural/trainer.hpp"
 
@@ -69,9 +70,11 @@ struct NeuralBaseline {
 
 /// Loads the cached network for this key from `cache_dir` when there is one, otherwise flies
 /// the collection flights on `jobs` threads, trains and (with a cache_dir) saves. An empty
-/// cache_dir disables the cache. `progress` receives one-line messages.
-[[nodiscard]] NeuralBaseline prepareNeuralBaseline(
-    const FlightScenario& base, const NeuralSettings& s, const std::filesystem::path& cache_dir,
-    int jobs, const std::function<void(const std::string&)>& progress = {});
+/// cache_dir disables the cache. `progress` (optional) receives the stages, the collection
+/// flights and the training epochs.
+[[nodiscard]] NeuralBaseline prepareNeuralBaseline(const FlightScenario& base,
+                                                   const NeuralSettings& s,
+                                                   const std::filesystem::path& cache_dir, int jobs,
+                                                   Progress* progress = nullptr);
 
 }  // namespace geaware::experiments

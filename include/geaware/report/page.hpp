@@ -18,6 +18,8 @@ struct Series {
   std::vector<double> y;
   std::string mode = "lines";  ///< "lines", "markers" or "lines+markers"
   std::string dash;            ///< "" (solid), "dash", "dot"
+  std::string color{};         ///< CSS colour, e.g. "#1f77b4"; "": plotly's next colour
+  std::string fill{};          ///< "" (none) or "tozeroy" (shade down to y = 0, e.g. terrain)
 };
 
 enum class AxisType { kLinear, kLog };
@@ -30,6 +32,7 @@ struct Plot {
   AxisType x_axis = AxisType::kLinear;
   AxisType y_axis = AxisType::kLinear;
   int height_px = 420;  ///< height of the plot on the page [px], 100…4000
+  bool equal_aspect = false;  ///< one unit as long on y as on x (x–y views of a trajectory)
 };
 
 struct Table {
@@ -86,5 +89,10 @@ class Page {
 /// Throws std::runtime_error with the reason (no Chromium found, render failed).
 void exportPng(const std::filesystem::path& html_file, const std::filesystem::path& png_file,
                int width_px = 1200, int height_px = 900);
+
+/// Renders the whole of a page written by Page::write (every block, however tall, up to
+/// 10000 px) to `png_file`, `width_px` wide. Throws std::runtime_error with the reason.
+void exportPagePng(const std::filesystem::path& html_file, const std::filesystem::path& png_file,
+                   int width_px = 1200);
 
 }  // namespace geaware::report

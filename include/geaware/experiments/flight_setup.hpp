@@ -1,0 +1,33 @@
+#pragma once
+// Building a flight from the command line's terms: the trajectory from a few numbers, its
+// one-line description, the Neural-Lander network from a weight file.
+
+#include <memory>
+#include <string>
+
+#include "geaware/control/residual_force.hpp"
+#include "geaware/traj/trajectory.hpp"
+
+namespace geaware::experiments {
+
+/// A lemniscate (Table I) or a hover descent (the hover experiment).
+struct TrajectoryOptions {
+  bool lemniscate = true;
+  double height_m = 0.0;     ///< lemniscate height / final height of the descent [m]
+  double speed_mps = 0.0;    ///< lemniscate peak speed / descent rate (NaN: default) [m/s]
+  double extent_x_m = 1.5;   ///< lemniscate half extents [m]
+  double extent_y_m = 0.8;
+  int laps = 1;
+  double from_height_m = 1.5;  ///< descent start height [m]
+};
+
+[[nodiscard]] std::shared_ptr<const traj::Trajectory> makeTrajectory(const TrajectoryOptions& o);
+
+/// e.g. "lemniscate ±1.5 m × ±0.8 m at 0.12 m, 1 m/s peak, 1 lap".
+[[nodiscard]] std::string describe(const TrajectoryOptions& o);
+
+/// The Neural-Lander residual network of a weight file (neural::saveWeights' format).
+[[nodiscard]] std::shared_ptr<const control::ResidualForceModel> loadResidualNetwork(
+    const std::string& weights_file);
+
+}  // namespace geaware::experiments

@@ -1,0 +1,293 @@
+// The campaign's summary: the text of `geaware bench` and its JSON document (docs/results.md),
+// apart from the run (campaign.cpp) so that the run can change without touching its outputs.
+#include "geaware/experiments/campaign_summary.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+#include <set>
+#include <string>
+
+namespace geaware::experiments {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string cell(const MeanStd& m, double paper) {
+  return fmt::format("{:6.2f} ±{:5.2f} ({:5.2f})", m.mean, m.std, paper);
+}
+
+std::string calibrationText(const CampaignResult& r) {
+  std::string s;
+  const auto& cal = r.calibration;
+  s += fmt::format("Calibration on the virtual rigs (truth: the vehicle file's nominal truth): "
+                   "{} platform rows, {} stand rows, {:.2f} s\n",
+                   cal.platform_rows, cal.stand_rows, r.calibration_s);
+  s += fmt::format("  {:<42} {:>14} {:>14} {:>10}  {}\n", "parameter", "vehicle file", "identified",
+                   "std. err.", "rig");
+  for (const auto& p : cal.parameters) {
+    s += fmt::format("  {:<42} {:>14.6g} {:>14.6g} {:>10.2g}  {}\n", p.key, p.file_value,
+                     p.identified, p.std_error, p.source);
+  }
+  s += "  F_G(h): truth (noise-free level board) / identified / vehicle file\n";
+  for (const auto& pt : cal.thrust_ratio) {
+    const int cm = static_cast<int>(std::lround(pt.h_m * 100));
+    if (cm != 7 && cm != 10 && cm != 12 && cm != 15 && cm != 18 && cm != 20 && cm != 25 &&
+        cm != 30 && cm != 50 && cm != 100)
+      continue;
+    s += fmt::format("    h = {:4.2f} m: {:.4f} / {:.4f} ({:+5.1f} %) / {:.4f} ({:+5.1f} %)\n",
+                     pt.h_m, pt.truth, pt.identified, 100.0 * (pt.identified / pt.truth - 1.0),
+                     pt.file, 100.0 * (pt.file / pt.truth - 1.0));
+  }
+  s += fmt::format("  leveling torque at {:g}° tilt, {:g} rpm [N·m]: truth / identified / vehicle "
+                   "file\n",
+                   cal.torque_tilt_deg, cal.torque_rpm);
+  for (const auto& pt : cal.leveling_torque) {
+    const int cm = static_cast<int>(std::lround(pt.h_m * 100));
+    if (cm != 10 && cm != 12 && cm != 15 && cm != 18 && cm != 20 && cm != 25 && cm != 30 &&
+        cm != 35 && cm != 40)
+      continue;
+    s += fmt::format("    h = {:4.2f} m: {:+.4f} / {:+.4f} / {:+.4f}\n", pt.h_m, pt.truth,
+                     pt.identified, pt.file);
+  }
+  for (const auto& w : cal.warnings) s += "  warning: " + w + "\n";
+  return s;
+}
+
+std::string neuralText(const CampaignResult& r) {
+  std::string s;
+  if (r.neural) {
+    const auto& n = *r.neural;
+    if (n.trained) {
+      s += fmt::format("\nNeural-Lander: trained on {} rows, validation MSE {:.4f} N² per component "
+                       "({:.1f} s){}\n",
+                       n.rows, n.validation_loss_N2, r.neural_s,
+                       n.file.empty() ? "" : ", cached as " + n.file.string());
+    } else {
+      s += fmt::format("\nNeural-Lander: loaded from the cache, {} ({:.2f} s)\n", n.file.string(),
+                       r.neural_s);
+    }
+  }
+  return s;
+}
+
+std::string tableOneText(const CampaignResult& r) {
+  std::string s;
+  if (!r.experiments.empty()) {
+    s += fmt::format("\nTable I — ours: mean ±std over {} seed{} (the paper's real flight in "
+                     "parentheses), cm\n",
+                     r.seeds, r.seeds == 1 ? "" : "s");
+    s += fmt::format("{:>3} {:<7} {:<11} {:>5} {:>4} | {:^21} | {:^21} | {:^21} | {:^21} | {:^21} "
+                     "| {}\n",
+                     "exp", "acc", "torque", "h [m]", "v", "RMSE XOY", "RMSE Z", "RMSE all",
+                     "max ‖E_P‖", "σ‖E_P‖", "crashes");
+    for (const auto& e : r.experiments) {
+      const auto& x = e.experiment;
+      s += fmt::format("{:>3} {:<7} {:<11} {:>5.2f} {:>4g} | {} | {} | {} | {} | {} | {}\n", x.number,
+                       control::toString(x.acceleration), control::toString(x.torque), x.height_m,
+                       x.speed_mps, cell(e.rmse_xy_cm, x.paper.rmse_xy_cm),
+                       cell(e.rmse_z_cm, x.paper.rmse_z_cm), cell(e.rmse_all_cm, x.paper.rmse_all_cm),
+                       cell(e.max_cm, x.paper.max_cm), cell(e.std_cm, x.paper.std_cm), e.crashes);
+    }
+    for (const auto& e : r.experiments) {
+      if (e.crashes == 0) continue;
+      std::string times;
+      for (std::size_t k = 0; k < e.seeds.size(); ++k) {
+        if (e.crashed[k]) {
+          times += fmt::format("{}seed {} at {:.2f} s", times.empty() ? "" : ", ", e.seeds[k],
+                               e.crash_t_s[k]);
+        }
+      }
+      s += fmt::format("  exp {}: ground strike{} ({}); its metrics are those up to the strike\n",
+                       e.experiment.number, e.crashes == 1 ? "" : "s", times);
+    }
+  }
+  return s;
+}
+
+std::string hoverText(const CampaignResult& r) {
+  std::string s;
+  if (!r.hover.empty()) {
+    s += fmt::format("\nHover descent ({}:…): angle error E between desired and true attitude by "
+                     "true rotor-plane height, deg (mean over {} seed{})\n",
+                     "model", r.seeds, r.seeds == 1 ? "" : "s");
+    s += "  (peaks among the bins every seed visited)\n";
+    s += fmt::format("{:>13}", "h [m]");
+    for (const auto& c : r.hover) s += fmt::format(" {:>11}", control::toString(c.torque));
+    s += "\n";
+    // The union of bins (every curve has the same binning).
+    std::set<double> centres;
+    for (const auto& c : r.hover) {
+      for (const auto& b : c.bins) centres.insert(std::round(b.centre_m() * 1e6) / 1e6);
+    }
+    for (double h : centres) {
+      s += fmt::format("{:>13}", fmt::format("{:.3f}", h));
+      for (const auto& c : r.hover) {
+        double v = kNaN;
+        for (const auto& b : c.bins) {
+          if (std::abs(b.centre_m() - h) < 1e-6) v = b.angle_err_deg;
+        }
+        s += std::isfinite(v) ? fmt::format(" {:>11.3f}", v) : fmt::format(" {:>11}", "–");
+      }
+      s += "\n";
+    }
+    for (const auto& c : r.hover) {
+      const double peak_h = peakHeight(c);
+      s += fmt::format("  {:<11} peak {:.3f}° at {:.3f} m; mean E 0.1–0.3 m {:.3f}°, 1–1.5 m "
+                       "{:.3f}° (ratio {:.2f}){}\n",
+                       control::toString(c.torque), bandMax(c, peak_h - 1e-6, peak_h + 1e-6), peak_h,
+                       bandMean(c, 0.1, 0.3), bandMean(c, 1.0, 1.5),
+                       bandMean(c, 0.1, 0.3) / bandMean(c, 1.0, 1.5),
+                       c.crashes ? fmt::format(", {} crashes", c.crashes) : "");
+    }
+  }
+  return s;
+}
+
+std::string checksText(const CampaignResult& r) {
+  std::string s;
+  s += "\nHeadline ratios and acceptance checks (issue 6):\n";
+  for (const auto& c : r.checks) {
+    s += fmt::format("  [{}] {}: {:.3f} (criterion {}; paper {})\n", c.pass ? "pass" : "FAIL",
+                     c.name, c.value, c.criterion, c.paper);
+  }
+  const auto* e1 = r.experiment(1);
+  const auto* e5 = r.experiment(5);
+  const auto* e6 = r.experiment(6);
+  const auto* e7 = r.experiment(7);
+  if (e1 && e5) {
+    s += fmt::format("  reduction of RMSE all, exp 5 vs exp 1: {:.1f} % (paper {:.1f} %)\n",
+                     100.0 * (1.0 - e5->rmse_all_cm.mean / e1->rmse_all_cm.mean),
+                     100.0 * (1.0 - 4.45 / 10.85));
+  }
+  if (e6 && e7) {
+    s += fmt::format("  reduction of RMSE all, exp 7 vs exp 6: {:.1f} % (paper {:.1f} %)\n",
+                     100.0 * (1.0 - e7->rmse_all_cm.mean / e6->rmse_all_cm.mean),
+                     100.0 * (1.0 - 6.97 / 12.74));
+  }
+  s += fmt::format("\n{} flights, {:.0f} s simulated, on {} thread{}; wall time {:.1f} s "
+                   "(calibration {:.1f} s, Neural-Lander {:.1f} s, flights {:.1f} s)\n",
+                   r.flights, r.simulated_s, r.threads, r.threads == 1 ? "" : "s", r.wall_s,
+                   r.calibration_s, r.neural_s, r.flights_s);
+  return s;
+}
+
+}  // namespace
+
+std::string formatCampaign(const CampaignResult& r) {
+  return calibrationText(r) + neuralText(r) + tableOneText(r) + hoverText(r) + checksText(r);
+}
+
+// ------------------------------------------------------------------------------------ JSON
+
+namespace {
+
+io::Json metricsJson(const TableMetrics& m) {
+  return {{"rmse_xy_cm", m.rmse_xy_cm}, {"rmse_z_cm", m.rmse_z_cm}, {"rmse_all_cm", m.rmse_all_cm},
+          {"max_cm", m.max_cm}, {"std_cm", m.std_cm}};
+}
+
+io::Json experimentJson(const ExperimentSummary& e) {
+  const auto& x = e.experiment;
+  const TableMetrics mean{e.rmse_xy_cm.mean, e.rmse_z_cm.mean, e.rmse_all_cm.mean, e.max_cm.mean,
+                          e.std_cm.mean};
+  const TableMetrics sd{e.rmse_xy_cm.std, e.rmse_z_cm.std, e.rmse_all_cm.std, e.max_cm.std,
+                        e.std_cm.std};
+  io::Json j = {{"exp", x.number},
+                {"acc", control::toString(x.acceleration)},
+                {"torque", control::toString(x.torque)},
+                {"height_m", x.height_m},
+                {"speed_mps", x.speed_mps},
+                {"half_extent_x_m", x.half_extent_x_m},
+                {"half_extent_y_m", x.half_extent_y_m}};
+  j.update(metricsJson(mean));
+  j["crashes"] = e.crashes;
+  j["seeds"] = e.seeds.size();
+  j["std_over_seeds"] = metricsJson(sd);
+  j["paper"] = metricsJson(x.paper);
+  io::Json per_seed = io::Json::array();
+  for (std::size_t s = 0; s < e.per_seed.size(); ++s) {
+    io::Json f = {{"seed", e.seeds[s]}};
+    f.update(metricsJson(e.per_seed[s]));
+    f["crashed"] = static_cast<bool>(e.crashed[s]);
+    f["crash_t_s"] = e.crash_t_s[s];
+    per_seed.push_back(std::move(f));
+  }
+  j["per_seed"] = std::move(per_seed);
+  return j;
+}
+
+io::Json hoverJson(const HoverCurve& c) {
+  io::Json bins = io::Json::array();
+  for (const auto& bin : c.bins) {
+    bins.push_back({{"h_m", bin.centre_m()},
+                    {"h_low_m", bin.h_low_m},
+                    {"h_high_m", bin.h_high_m},
+                    {"angle_err_deg", bin.angle_err_deg},
+                    {"angle_err_std_deg", bin.angle_err_std_deg},
+                    {"samples", bin.samples},
+                    {"seeds_visited", bin.seeds_visited},
+                    {"per_seed_deg", bin.per_seed_deg}});
+  }
+  return {{"torque", control::toString(c.torque)},
+          {"acc", "model"},
+          {"crashes", c.crashes},
+          {"bins", std::move(bins)}};
+}
+
+io::Json calibrationJson(const ControllerCalibration& cal) {
+  io::Json parameters = io::Json::array();
+  for (const auto& p : cal.parameters) {
+    parameters.push_back({{"key", p.key},
+                          {"unit", p.unit},
+                          {"source", p.source},
+                          {"vehicle_file", p.file_value},
+                          {"identified", p.identified},
+                          {"std_error", p.std_error}});
+  }
+  io::Json ratio = io::Json::array();
+  for (const auto& p : cal.thrust_ratio) {
+    ratio.push_back(
+        {{"h_m", p.h_m}, {"truth", p.truth}, {"identified", p.identified}, {"vehicle_file", p.file}});
+  }
+  return {{"parameters", std::move(parameters)}, {"thrust_ratio", std::move(ratio)}};
+}
+
+}  // namespace
+
+io::Json campaignJson(const CampaignResult& r) {
+  io::Json j;
+  j["experiments"] = io::Json::array();
+  for (const auto& e : r.experiments) j["experiments"].push_back(experimentJson(e));
+  j["hover"] = io::Json::array();
+  for (const auto& c : r.hover) j["hover"].push_back(hoverJson(c));
+  j["checks"] = io::Json::array();
+  for (const auto& c : r.checks) {
+    j["checks"].push_back({{"name", c.name},
+                           {"criterion", c.criterion},
+                           {"value", c.value},
+                           {"paper", c.paper},
+                           {"pass", c.pass}});
+  }
+  j["calibration"] = calibrationJson(r.calibration);
+  if (r.neural) {
+    const auto& n = *r.neural;
+    j["neural"] = {{"trained", n.trained},
+                   {"key_hash", n.key_hash},
+                   {"file", n.file.string()},
+                   {"rows", n.rows},
+                   {"validation_loss_N2", n.validation_loss_N2}};
+  }
+  j["seeds"] = r.seeds;
+  j["threads"] = r.threads;
+  j["flights"] = r.flights;
+  j["simulated_s"] = r.simulated_s;
+  j["wall_s"] = r.wall_s;
+  j["calibration_s"] = r.calibration_s;
+  j["neural_s"] = r.neural_s;
+  j["flights_s"] = r.flights_s;
+  return j;
+}
+
+}  // namespace geaware::experiments

@@ -1,0 +1,34 @@
+#pragma once
+// Helpers shared by the flight runner (flight.cpp) and the scenario validation
+// (scenario_validation.cpp); not part of the public API.
+
+#include <cmath>
+#include <memory>
+
+#include "geaware/experiments/flight.hpp"
+#include "geaware/sim/terrains.hpp"
+
+namespace geaware::experiments::detail {
+
+/// Plant steps per control tick, or 0 when the plant rate is not a multiple of the control rate.
+inline long decimationOf(double plant_rate_hz, double control_rate_hz) {
+  if (!(std::isfinite(plant_rate_hz) && plant_rate_hz > 0.0 && std::isfinite(control_rate_hz) &&
+        control_rate_hz > 0.0)) {
+    return 0;
+  }
+  const double ratio = plant_rate_hz / control_rate_hz;
+  const double n = std::round(ratio);
+  if (n < 1.0 || std::abs(ratio - n) > 1e-9 * ratio) return 0;
+  return static_cast<long>(n);
+}
+
+inline std::shared_ptr<const sim::Terrain> terrainOf(const FlightScenario& s) {
+  return s.terrain ? s.terrain : std::make_shared<sim::FlatGround>(0.0);
+}
+
+/// Vertical distance from the rotor-plane centre to the terrain under it [m].
+inline double heightAbove(const sim::Terrain& terrain, const Eigen::Vector3d& p_W) noexcept {
+  return p_W.z() - terrain.heightAt(p_W.x(), p_W.y());
+}
+
+}  // namespace geaware::experiments::detail

@@ -1,0 +1,90 @@
+#include "geaware/experiments/flight_summary.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+#include "geaware/experiments/flight_plots.hpp"
+
+namespace geaware::experiments {
+
+std::string controllerName(const control::ControllerParams& p) {
+  return std::string(control::toString(p.acceleration)) + ":" + control::toString(p.torque);
+}
+
+std::string formatFlight(const FlightResult& r) {
+  const auto& m = r.tracking;
+  std::string s = fmt::format(
+      "RMSE XOY {:.2f} cm, Z {:.2f} cm, all {:.2f} cm; max ‖E_P‖ {:.2f} cm; σ‖E_P‖ {:.2f} cm "
+      "({} samples)\n",
+      m.rmse_xy_m * 100, m.rmse_z_m * 100, m.rmse_all_m * 100, m.max_m * 100, m.std_m * 100,
+      m.samples);
+  s += r.crash ? "CRASHED: " + r.crash_description + "\n" : std::string("completed, no crash\n");
+  std::string flags;
+  for (int b = 0; b < kControllerFlagBits; ++b) {
+    const auto n = r.flag_counts[static_cast<std::size_t>(b)];
+    if (n > 0) flags += fmt::format("{}{} {}", flags.empty() ? "" : ", ", controllerFlagName(b), n);
+  }
+  if (!flags.empty()) s += "controller flags (ticks): " + flags + "\n";
+  s += fmt::format("simulated {:.2f} s in {:.3f} s: {:.0f}× real time\n", r.simulated_s, r.wall_s,
+                   r.real_time_factor);
+  return s;
+}
+
+io::Json flightJson(const FlightScenario& s, const FlightResult& r) {
+  const auto& m = r.tracking;
+  io::Json j = {{"rmse_xy_cm", m.rmse_xy_m * 100}, {"rmse_z_cm", m.rmse_z_m * 100},
+                {"rmse_all_cm", m.rmse_all_m * 100}, {"max_cm", m.max_m * 100},
+                {"std_cm", m.std_m * 100},          {"crashed", r.crash.has_value()}};
+  if (r.crash) {
+    const auto& p = r.crash->point_W;
+    j["crash"] = {{"t_s", r.crash->t_s},
+                  {"point_m", {p.x(), p.y(), p.z()}},
+                  {"description", r.crash_description}};
+  } else {
+    j["crash"] = nullptr;
+  }
+  j["samples"] = m.samples;
+  j["controller"] = controllerName(s.controller);
+  j["seed"] = s.seed;
+  io::Json flags = io::Json::object();
+  for (int b = 0; b < kControllerFlagBits; ++b) {
+    flags[controllerFlagName(b)] = r.flag_counts[static_cast<std::size_t>(b)];
+  }
+  j["flags"] = std::move(flags);
+  j["simulated_s"] = r.simulated_s;
+  j["wall_s"] = r.wall_s;
+  j["real_time_factor"] = r.real_time_factor;
+  return j;
+}
+
+std::filesystem::path writeFlightReport(const std::filesystem::path& dir, const FlightSeries& series,
+                                        const FlightResult& r, const std::string& title,
+                                        const io::RunInfo& run, bool png) {
+  if (std::filesystem::exists(dir) && !std::filesystem::is_directory(dir)) {
+    throw std::runtime_error("--report " + dir.string() + ": exists and is not a directory");
+  }
+  std::filesystem::create_directories(dir);
+  report::Page page("Closed-loop flight: " + title);
+  const auto& m = r.tracking;
+  page.addTable(
+      {"Tracking (reference vs true position, cm)",
+       {"RMSE XOY", "RMSE Z", "RMSE all", "max ‖E_P‖", "σ‖E_P‖", "crash"},
+       {{fmt::format("{:.2f}", m.rmse_xy_m * 100), fmt::format("{:.2f}", m.rmse_z_m * 100),
+         fmt::format("{:.2f}", m.rmse_all_m * 100), fmt::format("{:.2f}", m.max_m * 100),
+         fmt::format("{:.2f}", m.std_m * 100), r.crash ? r.crash_description : std::string("none")}}});
+  page.addTable(plots::provenanceTable(run));
+  const std::vector<plots::Flown> flown = {{"flown (truth)", &series, plots::color(0)}};
+  page.addPlot(plots::topView("Trajectory seen from above", flown));
+  page.addPlot(plots::heightPlot("Height over time, terrain under the vehicle", flown));
+  page.addPlot(plots::errorPlot("Position error over time", flown));
+  page.addPlot(plots::attitudeErrorPlot("Attitude error (desired vs true) over time", flown));
+  page.addPlot(plots::rotorPlot("Rotor speeds (truth)", series));
+  page.addPlot(plots::torquePlot("Body torques: command τ_des and rotor estimate τ̂_B", series));
+  const auto html = dir / "flight.html";
+  page.write(html);
+  if (png) report::exportPagePng(html, dir / "flight.png");
+  return html;
+}
+
+}  // namespace geaware::experiments

@@ -1,0 +1,189 @@
+// Validation of a flight scenario before it is flown: every stage's parameters, the rates, and
+// the trajectory's feasibility for the nominal vehicle (flight.hpp, validate()).
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "flight_internal.hpp"
+#include "geaware/experiments/flight.hpp"
+#include "geaware/flatness/flat_map.hpp"
+#include "geaware/model/vehicle_model.hpp"
+
+namespace geaware::experiments {
+namespace {
+
+using detail::decimationOf;
+using detail::heightAbove;
+using detail::terrainOf;
+
+std::string show(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
+std::string describe(const std::vector<ScenarioProblem>& problems) {
+  std::string s = "invalid flight scenario:";
+  for (const auto& p : problems)
+    s += "\n  " + p.field + " = " + p.value + ": expected " + p.expected;
+  return s;
+}
+
+void append(std::vector<ScenarioProblem>& out, std::vector<model::FieldError> errors,
+            const std::string& prefix) {
+  for (auto& e : errors) {
+    e.field = prefix + e.field;
+    out.push_back(std::move(e));
+  }
+}
+
+bool finiteNonNegative(double v) { return std::isfinite(v) && v >= 0.0; }
+
+void nonNegative(std::vector<ScenarioProblem>& out, const std::string& field, double v) {
+  if (!finiteNonNegative(v)) out.push_back({field, show(v), "a finite number >= 0"});
+}
+
+void positive(std::vector<ScenarioProblem>& out, const std::string& field, double v) {
+  if (!(std::isfinite(v) && v > 0.0)) out.push_back({field, show(v), "a finite number > 0"});
+}
+
+void finite3(std::vector<ScenarioProblem>& out, const std::string& field,
+             const Eigen::Vector3d& v) {
+  if (!v.allFinite()) {
+    out.push_back(
+        {field, "(" + show(v.x()) + ", " + show(v.y()) + ", " + show(v.z()) + ")", "finite"});
+  }
+}
+
+/// The flat map of the nominal vehicle along the trajectory, at the control rate: the rotor
+/// speeds it asks for must lie within the throttle curve's range. A reference through the
+/// ground is not an error here (the flight will end in a strike, which is a result).
+void checkFeasibility(const FlightScenario& s, std::vector<ScenarioProblem>& out) {
+  const model::VehicleModel vehicle(s.vehicle);
+  const flatness::FlatMap map(vehicle, flatness::GroundEffectTerms::all());
+  const auto terrain = terrainOf(s);
+  const double duration = s.trajectory->duration();
+  const double dt = 1.0 / s.controller.rate_hz;
+  const auto steps = static_cast<long>(std::ceil(duration / dt));
+  const double n_lo = vehicle.throttleCurve().minSpeedRpm();
+  const double n_hi = vehicle.throttleCurve().maxSpeedRpm();
+  double worst_hi = 0.0;
+  double worst_lo = n_hi;
+  double first_t = -1.0;
+  Eigen::Vector4d first_n = Eigen::Vector4d::Zero();
+  for (long k = 0; k <= steps; ++k) {
+    const double t = std::min(static_cast<double>(k) * dt, duration);
+    const traj::FlatOutput ref = s.trajectory->sample(t);
+    if (!ref.allFinite()) {
+      out.push_back({"trajectory", "t = " + show(t) + " s", "finite flat outputs"});
+      return;
+    }
+    const double h = std::max(heightAbove(*terrain, ref.p_W), 0.0);
+    const flatness::FlatState st = map.evaluate(ref, h);
+    if (!st.ok()) {
+      out.push_back({"trajectory", "t = " + show(t) + " s: " + flatness::toString(st.status),
+                     "a reference the flat map can invert (positive collective thrust)"});
+      return;
+    }
+    const double hi = st.rotor_speeds_rpm.maxCoeff();
+    const double lo = std::sqrt(std::max(st.n_sq_rpm2.minCoeff(), 0.0));
+    worst_hi = std::max(worst_hi, hi);
+    worst_lo = std::min(worst_lo, lo);
+    if (!st.rotor_speeds_feasible && first_t < 0.0) {
+      first_t = t;
+      first_n = st.rotor_speeds_rpm;
+    }
+  }
+  if (first_t >= 0.0) {
+    out.push_back({"trajectory",
+                   "rotor speeds beyond the motors from t = " + show(first_t) +
+                       " s (n = " + show(first_n(0)) + ", " + show(first_n(1)) + ", " +
+                       show(first_n(2)) + ", " + show(first_n(3)) + " rpm; over the flight " +
+                       show(worst_lo) + " to " + show(worst_hi) + " rpm)",
+                   "rotor speeds of the flat map (nominal vehicle) within the throttle curve's [" +
+                       show(n_lo) + ", " + show(n_hi) +
+                       "] rpm: fly slower, wider or with less "
+                       "acceleration"});
+  }
+}
+
+}  // namespace
+
+InvalidScenario::InvalidScenario(std::vector<ScenarioProblem> problems)
+    : std::invalid_argument(describe(problems)), problems_(std::move(problems)) {}
+
+std::vector<ScenarioProblem> validate(const FlightScenario& s, ScenarioStage stage) {
+  std::vector<ScenarioProblem> out;
+  const auto vehicle_errors = s.vehicle.validate();
+  append(out, vehicle_errors, "vehicle.");
+  if (s.truth) {
+    append(out, s.truth->validate(), "truth.");
+  } else if (vehicle_errors.empty()) {
+    append(out, sim::fromNominal(s.vehicle).validate(), "truth.");
+  }
+  if (s.mismatch) {
+    const sim::MismatchSpec& m = s.mismatch.value();
+    const auto bounded = [&out](const std::string& f, double v, double hi) {
+      if (!(std::isfinite(v) && v >= 0.0 && v < hi)) {
+        out.push_back({"mismatch." + f, show(v), "a finite number in [0, " + show(hi) + ")"});
+      }
+    };
+    bounded("mass_rel", m.mass_rel, 0.5);
+    bounded("inertia_rel", m.inertia_rel, 0.5);
+    bounded("cog_offset_m", m.cog_offset_m, 0.05);
+    bounded("cog_offset_z_m", m.cog_offset_z_m, 0.05);
+    bounded("thrust_spread_rel", m.thrust_spread_rel, 0.5);
+  }
+  if (!s.trajectory) {
+    out.push_back({"trajectory", "none", "a trajectory to fly"});
+  } else if (!finiteNonNegative(s.trajectory->duration())) {
+    out.push_back({"trajectory", "duration " + show(s.trajectory->duration()) + " s",
+                   "a finite duration >= 0"});
+  }
+  append(out, s.controller.validate(), "controller.");
+  if (stage == ScenarioStage::kFlight &&
+      s.controller.acceleration == control::AccelerationCompensation::kNeural && !s.residual) {
+    out.push_back({"residual", "none",
+                   "a trained residual-force network for acceleration compensation 'neural' "
+                   "(load one with neural::loadWeights)"});
+  }
+  append(out, s.sensors.validate(), "sensors.");
+  append(out, s.eskf.validate(), "eskf.");
+  if (std::abs(s.eskf.imu_rate_hz - s.sensors.imu.rate_Hz) > 1e-9 * s.sensors.imu.rate_Hz) {
+    out.push_back({"eskf.imu_rate_hz", show(s.eskf.imu_rate_hz),
+                   "the IMU's rate, sensors.imu.rate_Hz = " + show(s.sensors.imu.rate_Hz)});
+  }
+  if (s.lattice) append(out, s.lattice->validate(), "lattice.");
+  if (s.disturbances.turbulence) {
+    append(out, s.disturbances.turbulence_params.validate(), "disturbances.turbulence.");
+  }
+  if (s.disturbances.wind) append(out, s.disturbances.wind_params.validate(), "disturbances.wind.");
+  positive(out, "plant_rate_hz", s.plant_rate_hz);
+  if (std::isfinite(s.plant_rate_hz) && s.plant_rate_hz > 0.0 &&
+      decimationOf(s.plant_rate_hz, s.controller.rate_hz) == 0) {
+    out.push_back({"plant_rate_hz", show(s.plant_rate_hz),
+                   "an integer multiple of controller.rate_hz = " + show(s.controller.rate_hz)});
+  }
+  nonNegative(out, "start_hover_s", s.start_hover_s);
+  nonNegative(out, "settle_s", s.settle_s);
+  positive(out, "max_height_age_s", s.max_height_age_s);
+  positive(out, "hover_bins.bin_width_m", s.hover_bins.bin_width_m);
+  positive(out, "hover_bins.max_height_m", s.hover_bins.max_height_m);
+  if (std::isfinite(s.hover_bins.bin_width_m) && s.hover_bins.bin_width_m > 0.0 &&
+      std::isfinite(s.hover_bins.max_height_m) &&
+      s.hover_bins.max_height_m / s.hover_bins.bin_width_m > 100000.0) {
+    out.push_back({"hover_bins.bin_width_m", show(s.hover_bins.bin_width_m),
+                   "at most 100000 bins up to max_height_m"});
+  }
+  finite3(out, "estimator_start.position_error_m", s.estimator_start.position_error_m);
+  finite3(out, "estimator_start.velocity_error_mps", s.estimator_start.velocity_error_mps);
+  finite3(out, "estimator_start.attitude_error_rad", s.estimator_start.attitude_error_rad);
+  if (out.empty() && s.check_feasibility) checkFeasibility(s, out);
+  return out;
+}
+
+}  // namespace geaware::experiments

@@ -1,0 +1,133 @@
+// Every command of the geaware binary with `--json -`: standard output must be one JSON
+// document and nothing else (human text goes to stderr), parsed here with nlohmann-json, with
+// the provenance of the run. A vehicle whose name holds quotes and a backslash must come back
+// escaped and intact; non-finite numbers must be null (never `nan`).
+//
+// The commands are those main.cpp registers: model, fly, bench, and (see below) identify, rig.
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <regex>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#ifndef GEAWARE_BINARY
+#error "GEAWARE_BINARY must name the built geaware executable"
+#endif
+
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+struct Run {
+  int exit_code = -1;
+  std::string out;
+};
+
+/// Runs `geaware ARGS` from the source root, stderr discarded, and returns stdout.
+Run geaware(const std::string& args) {
+  const std::string cmd = std::string("cd '") + GEAWARE_SOURCE_DIR + "' && '" GEAWARE_BINARY "' " +
+                          args + " 2>/dev/null";
+  Run r;
+  std::FILE* p = ::popen(cmd.c_str(), "r");
+  if (p == nullptr) return r;
+  char buf[4096];
+  std::size_t n = 0;
+  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+  const int status = ::pclose(p);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+/// Parses stdout as exactly one JSON document (trailing whitespace only) with provenance.
+Json parse(const Run& r, const std::string& what) {
+  EXPECT_EQ(r.exit_code, 0) << what;
+  Json doc;
+  try {
+    doc = Json::parse(r.out);  // throws on anything but one document
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << what << ": stdout is not one JSON document (" << e.what() << "):\n" << r.out;
+    return doc;
+  }
+  EXPECT_TRUE(doc.is_object()) << what;
+  EXPECT_TRUE(doc.contains("provenance")) << what;
+  if (doc.contains("provenance")) {
+    const Json& p = doc["provenance"];
+    EXPECT_TRUE(p["geaware_version"].is_string()) << what;
+    EXPECT_TRUE(p["commit"].is_string()) << what;
+    EXPECT_NE(p["command_line"].get<std::string>().find("--json -"), std::string::npos) << what;
+  }
+  // A non-finite number must be null, never a bare token (which no JSON parser accepts).
+  EXPECT_FALSE(std::regex_search(r.out, std::regex(R"([:\[,]\s*-?(nan|inf|NaN|Infinity))")))
+      << what << ": a non-finite number in the JSON text";
+  return doc;
+}
+
+/// A copy of the committed vehicle whose name holds a double quote and a backslash.
+fs::path oddlyNamedVehicle() {
+  const fs::path dir = fs::temp_directory_path() / "geaware_json_output_test";
+  fs::create_directories(dir);
+  std::ifstream in(fs::path(GEAWARE_SOURCE_DIR) / "config/vehicles/paper_quad.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string yaml = text.str();
+  const std::string key = "\nname: paper_quad";
+  const auto at = yaml.find(key);
+  EXPECT_NE(at, std::string::npos);
+  yaml.replace(at, key.size(), "\nname: 'say \"hi\" \\ back'");
+  const fs::path file = dir / "odd_name.yaml";
+  std::ofstream(file) << yaml;
+  return file;
+}
+
+TEST(JsonOutput, ModelPrintsOnlyJsonWithTheNameEscaped) {
+  const fs::path vehicle = oddlyNamedVehicle();
+  const Json doc = parse(geaware("model --heights 0.05:0.3:0.05 --vehicle '" + vehicle.string() +
+                                 "' --json -"),
+                         "model");
+  EXPECT_EQ(doc["vehicle"], "say \"hi\" \\ back");
+  ASSERT_EQ(doc["rows"].size(), 6u);
+  EXPECT_EQ(doc["rows"][1]["h_m"], 0.1);
+  EXPECT_GT(doc["rows"][1]["F_G"].get<double>(), 0.0);
+  EXPECT_EQ(doc["provenance"]["inputs"][0]["sha256"].get<std::string>().size(), 64u);
+}
+
+TEST(JsonOutput, FlyPrintsOnlyJson) {
+  const Json doc = parse(
+      geaware("fly --trajectory hover-descent --from-height 0.5 --height 0.2 "
+              "--controller model:model_indi --seed 2 --json -"),
+      "fly");
+  EXPECT_EQ(doc["controller"], "model:model_indi");
+  EXPECT_EQ(doc["seed"], 2);
+  EXPECT_EQ(doc["crashed"], false);
+  EXPECT_TRUE(doc["crash"].is_null());
+  EXPECT_GT(doc["rmse_all_cm"].get<double>(), 0.0);
+  EXPECT_EQ(doc["provenance"]["seeds"], Json::array({2}));
+}
+
+TEST(JsonOutput, FlyAScenarioPrintsOnlyJson) {
+  const Json doc = parse(geaware("fly --scenario config/scenarios/lemniscate_low.yaml --json -"),
+                         "fly --scenario");
+  EXPECT_EQ(doc["provenance"]["inputs"][0]["path"], "config/scenarios/lemniscate_low.yaml");
+}
+
+TEST(JsonOutput, BenchPrintsOnlyJsonWithNullForMissingNumbers) {
+  // The shortest campaign: one seed of experiment 1 (no Neural-Lander training).
+  const Json doc = parse(geaware("bench --only 1 --seeds 1 --no-cache --json -"), "bench");
+  ASSERT_EQ(doc["experiments"].size(), 1u);
+  EXPECT_EQ(doc["experiments"][0]["exp"], 1);
+  // Not crashed: the crash time is not a number, written as null.
+  if (doc["experiments"][0]["per_seed"][0]["crashed"] == false) {
+    EXPECT_TRUE(doc["experiments"][0]["per_seed"][0]["crash_t_s"].is_null());
+  }
+  EXPECT_FALSE(doc["calibration"]["parameters"].empty());
+}
+
+}  // namespace
