@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "geaware/control/allocation.hpp"
 #include "geaware/model/rotation.hpp"
 #include "geaware/model/units.hpp"
 
@@ -102,36 +103,6 @@ ControllerOutput Controller::fallback(std::uint32_t flags) const noexcept {
   out.n_des_rpm.setConstant(n);
   out.throttle.fill(throttle_curve_.throttle(n));
   return out;
-}
-
-Eigen::Vector4d Controller::allocate(double thrust_N, const Eigen::Vector3d& tau_B,
-                                     std::uint32_t& flags) const noexcept {
-  const double lo = throttle_curve_.minSpeedRpm() * throttle_curve_.minSpeedRpm();
-  const double hi = throttle_curve_.maxSpeedRpm() * throttle_curve_.maxSpeedRpm();
-  const Eigen::Matrix4d& Minv = mixer_.inverse();
-
-  // Thrust first: equal speeds, clipped to the range.
-  Eigen::Vector4d n_sq = Minv.col(0) * thrust_N;
-  const double uniform = n_sq(0);
-  if (uniform < lo || uniform > hi) {
-    n_sq.setConstant(std::clamp(uniform, lo, hi));
-    flags |= kFlagThrustSaturated;
-  }
-  // Then roll/pitch, then yaw: each scaled by the largest s ∈ [0, 1] that keeps every rotor
-  // inside [lo, hi] given what is already allocated.
-  const auto addScaled = [&](const Eigen::Vector4d& delta, std::uint32_t flag) {
-    double s = 1.0;
-    for (int i = 0; i < 4; ++i) {
-      if (delta(i) > 0.0) s = std::min(s, (hi - n_sq(i)) / delta(i));
-      if (delta(i) < 0.0) s = std::min(s, (lo - n_sq(i)) / delta(i));
-    }
-    s = std::max(s, 0.0);
-    if (s < 1.0) flags |= flag;
-    n_sq += s * delta;
-  };
-  addScaled(Minv.col(1) * tau_B.x() + Minv.col(2) * tau_B.y(), kFlagRollPitchSaturated);
-  addScaled(Minv.col(3) * tau_B.z(), kFlagYawSaturated);
-  return n_sq.cwiseMax(lo).cwiseMin(hi);  // guards rounding at the bounds
 }
 
 ControllerOutput Controller::update(const ControllerInput& in) noexcept {
@@ -273,7 +244,13 @@ ControllerOutput Controller::update(const ControllerInput& in) noexcept {
     yaw_torque_lagged_Nm_ += dt_s_ / (tau_r + dt_s_) * (tau.z() - yaw_torque_lagged_Nm_);
     tau_alloc.z() = yaw_torque_lagged_Nm_;
   }
-  const Eigen::Vector4d n_sq_des = allocate(thrust, tau_alloc, flags);
+  const RotorAllocation alloc =
+      allocateRotorSpeeds(mixer_.inverse(), thrust, tau_alloc, throttle_curve_.minSpeedRpm(),
+                          throttle_curve_.maxSpeedRpm());
+  if (alloc.thrust_saturated) flags |= kFlagThrustSaturated;
+  if (alloc.roll_pitch_saturated) flags |= kFlagRollPitchSaturated;
+  if (alloc.yaw_saturated) flags |= kFlagYawSaturated;
+  const Eigen::Vector4d& n_sq_des = alloc.n_sq_rpm2;
   const double thrust_acc_error = k_T_N_per_rpm2_ * (n_sq_des.sum() - n_sq_meas.sum()) / mass_kg_;
   const double i_limit = params_.thrust_pi_ki > 0.0 ? params_.thrust_pi_limit / params_.thrust_pi_ki : 0.0;
   thrust_pi_integral_ = std::clamp(thrust_pi_integral_ + thrust_acc_error * dt_s_, -i_limit, i_limit);

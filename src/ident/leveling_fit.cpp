@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "fit_support.hpp"
+#include "geaware/model/mixer.hpp"
 #include "geaware/model/units.hpp"
 
 namespace geaware::ident {
@@ -73,7 +74,7 @@ TiltedSamples tiltedSamples(const PlatformLog& log, const LevelingInputs& in,
       !(in.diagonal_rotor_distance_m > 0.0)) {
     throw std::invalid_argument("fitLeveling: k_T, k_TY and b must be positive");
   }
-  const double arm = std::sqrt(2.0) * in.diagonal_rotor_distance_m / 4.0;
+  const double arm = model::mixerArm_m(in.diagonal_rotor_distance_m);
   TiltedSamples t;
   for (std::size_t i = 0; i < log.size(); ++i) {
     const double tilt = std::abs(log.tilt_deg[i]);

@@ -9,6 +9,7 @@
 #include <Eigen/LU>
 
 #include "fit_support.hpp"
+#include "geaware/model/mixer.hpp"
 
 namespace geaware::ident {
 
@@ -232,7 +233,7 @@ AdditionalThrustTableFit fitAdditionalThrustTable(const PlatformLog& log,
 
 MixingFit fitMixing(const PlatformLog& log, double b, const PlatformFitOptions& options) {
   MixingFit out;
-  const double arm = std::sqrt(2.0) * b / 4.0;
+  const double arm = model::mixerArm_m(b);
   const std::vector<std::size_t> idx = levelSamples(log, options.level_tilt_deg);
   if (idx.size() < 10) {
     throw IdentError(log.source + ": cannot fit the mixing coefficients: only " +

@@ -441,7 +441,7 @@ CalibrationResult calibrate(const model::VehicleParams& vehicle, const RotorAero
   // 6. Mixing matrix near the ground (level board): k_T from equal speeds, k_TX from roll
   //    differences, k_I from yaw differences, each normalised by its value at 50 m.
   const Eigen::Matrix4d& A = model::Mixer::allocationPattern();
-  const double arm = std::sqrt(2.0) * vehicle.diagonal_rotor_distance_m / 4.0;
+  const double arm = model::mixerArm_m(vehicle.diagonal_rotor_distance_m);
   struct Coeffs {
     double kT, kTX, kI;
   };

@@ -151,7 +151,7 @@ class Truth {
   /// to a speed difference far from the board (50 m: no ground effect), as in calibrate().
   [[nodiscard]] double mixing(int row) const {
     const Eigen::Matrix4d& A = model::Mixer::allocationPattern();
-    const double arm = std::sqrt(2.0) * geaware_test::paperParams().diagonal_rotor_distance_m / 4.0;
+    const double arm = geaware::model::mixerArm_m(geaware_test::paperParams().diagonal_rotor_distance_m);
     std::array<double, 4> n{};
     double s = 0.0;
     for (int i = 0; i < 4; ++i) {

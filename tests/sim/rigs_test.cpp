@@ -168,7 +168,7 @@ TEST(Platform, MixingCoefficientsBarelyChangeNearTheGroundWhileThrustDoes) {
   // docs/paper-facts.md "The mixer near the ground": k_TX and k_I change < 10 % from high altitude
   // down to the board, k_T about 30 %. Rpm-difference experiments on the level board, fitted
   // by least squares from the noisy rig rows (as the paper identified them).
-  const double arm = std::sqrt(2.0) * paperParams().diagonal_rotor_distance_m / 4.0;
+  const double arm = geaware::model::mixerArm_m(paperParams().diagonal_rotor_distance_m);
   const Eigen::Matrix4d& A = model::Mixer::allocationPattern();
   struct Coeffs {
     double kT, kTX, kI;

@@ -101,10 +101,6 @@ class Controller {
   /// Throttles that hold a level hover at the last valid height: the safe output for a tick
   /// whose inputs cannot be trusted.
   [[nodiscard]] ControllerOutput fallback(std::uint32_t flags) const noexcept;
-  /// Splits [T; τ] into rotor speeds within the throttle curve's range (thrust, then
-  /// roll/pitch, then yaw) and sets the saturation flags.
-  [[nodiscard]] Eigen::Vector4d allocate(double thrust_N, const Eigen::Vector3d& tau_B,
-                                         std::uint32_t& flags) const noexcept;
 
   ControllerParams params_;
   std::shared_ptr<const ResidualForceModel> residual_;

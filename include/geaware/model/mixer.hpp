@@ -7,12 +7,20 @@
 // 1 and 2 spin counter-clockwise seen from above (reaction torque −z), 3 and 4 clockwise.
 
 #include <array>
+#include <cmath>
 
 #include <Eigen/Core>
 
 #include "geaware/model/vehicle_params.hpp"
 
 namespace geaware::model {
+
+/// Arm of the X layout: the distance of each rotor centre from the body x and y axes, √2·b/4,
+/// for the distance b between diagonal rotor axes [m]. The roll and pitch rows of the mixer
+/// carry it (M = diag(k_T, arm·k_TX, arm·k_TY, k_I)·A).
+[[nodiscard]] inline double mixerArm_m(double diagonal_rotor_distance_m) noexcept {
+  return std::sqrt(2.0) * diagonal_rotor_distance_m / 4.0;
+}
 
 class Mixer {
  public:
