@@ -230,7 +230,7 @@ ControllerOutput Controller::update(const ControllerInput& in) noexcept {
   }
 
   // 5. Rotor speeds and throttles: inverse throttle curve plus the shared PI correction on the
-  //    thrust-acceleration error T_a^E = (Σk_T·n_des² − Σk_T·n²)/m (FACTS.md).
+  //    thrust-acceleration error T_a^E = (Σk_T·n_des² − Σk_T·n²)/m (docs/paper-facts.md).
   // The rotors' yaw response to a steady-torque command is (1 + s·τ_R)/(1 + s·τ_motor): the
   // J_R·ṅ lead. Lagging the command by 1/(1 + s·τ_R) (backward Euler) leaves the motor lag only.
   Eigen::Vector3d tau_alloc = tau;

@@ -13,7 +13,7 @@
 //   4. thrust T_des = m·(a_des + g·z_W)ᵀ·ẑ_B, torque by the selected compensation (eq. 33);
 //   5. rotor speeds N² = M⁻¹·[T; τ] with saturation that keeps thrust, then roll/pitch,
 //      before yaw; throttles from the inverse throttle curve plus the shared PI correction on
-//      the thrust-acceleration error (FACTS.md, supplementary section 3).
+//      the thrust-acceleration error (docs/paper-facts.md, supplementary section 3).
 // Where it departs from the paper: the yaw torque of a rotor is k_I·n² + J_R·ṅ (the paper's
 // own motor model), and with this vehicle's J_R the J_R·ṅ part dominates any fast yaw command
 // (≈ 28× the k_I·n² effect above 0.2 Hz). The mixer's k_I·n² alone would make the yaw loop
