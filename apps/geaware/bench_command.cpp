@@ -1,7 +1,7 @@
 // `geaware bench`: parse the options into experiments::CampaignOptions, run the campaign, print.
 // Thin: the campaign, its text, JSON and report live in the experiments layer.
 
-#include "bench_command.hpp"
+#include "commands.hpp"
 
 #include <fmt/format.h>
 

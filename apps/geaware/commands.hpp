@@ -38,5 +38,11 @@ void writeJsonOutput(const std::string& path, io::Json doc, const io::RunInfo& r
 
 /// `geaware model`: the controller-side ground-effect model tabulated over heights.
 Runner addModelCommand(CLI::App& app);
+/// `geaware fly`: one closed-loop flight (experiments/flight.hpp): the Table I metrics, the
+/// crash, the real-time factor; optionally the CSV log, JSON and a report. docs/closed-loop.md.
+Runner addFlyCommand(CLI::App& app);
+/// `geaware bench`: the paper's experiments (experiments/campaign.hpp): calibration, the
+/// Neural-Lander baseline, Table I and the hover experiment over seeds. docs/results.md.
+Runner addBenchCommand(CLI::App& app);
 
 }  // namespace geaware::cli

@@ -2,7 +2,7 @@
 // Table I metrics. Thin: the loop, the metrics, the log, the summary and the report live in the
 // experiments layer.
 
-#include "fly_command.hpp"
+#include "commands.hpp"
 
 #include <fmt/format.h>
 

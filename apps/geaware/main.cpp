@@ -6,9 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "bench_command.hpp"
 #include "commands.hpp"
-#include "fly_command.hpp"
 #include "identify_command.hpp"
 #include "rig_command.hpp"
 

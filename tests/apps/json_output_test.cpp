@@ -3,7 +3,9 @@
 // the provenance of the run. A vehicle whose name holds quotes and a backslash must come back
 // escaped and intact; non-finite numbers must be null (never `nan`).
 //
-// The commands are those main.cpp registers: model, fly, bench, and (see below) identify, rig.
+// The commands are those main.cpp registers: model, fly, bench, rig (calibrate; the platform and
+// rotor sweeps write CSV logs, used here as the logs of identify), identify (rotor, platform,
+// correlations, flight).
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -14,6 +16,7 @@
 #include <sstream>
 #include <regex>
 #include <string>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -71,9 +74,10 @@ Json parse(const Run& r, const std::string& what) {
 }
 
 /// A copy of the committed vehicle whose name holds a double quote and a backslash.
+fs::path scratch();
+
 fs::path oddlyNamedVehicle() {
-  const fs::path dir = fs::temp_directory_path() / "geaware_json_output_test";
-  fs::create_directories(dir);
+  const fs::path dir = scratch();
   std::ifstream in(fs::path(GEAWARE_SOURCE_DIR) / "config/vehicles/paper_quad.yaml");
   std::stringstream text;
   text << in.rdbuf();
@@ -128,6 +132,49 @@ TEST(JsonOutput, BenchPrintsOnlyJsonWithNullForMissingNumbers) {
     EXPECT_TRUE(doc["experiments"][0]["per_seed"][0]["crash_t_s"].is_null());
   }
   EXPECT_FALSE(doc["calibration"]["parameters"].empty());
+}
+
+/// A scratch directory for the logs the rigs and `fly` write.
+fs::path scratch() {
+  const fs::path dir = fs::temp_directory_path() / "geaware_json_output_test";
+  fs::create_directories(dir);
+  return dir;
+}
+
+TEST(JsonOutput, RigCalibratePrintsOnlyJson) {
+  const Json doc = parse(geaware("rig calibrate --json -"), "rig calibrate");
+  EXPECT_TRUE(doc["all_pass"].is_boolean());
+  EXPECT_FALSE(doc["checks"].empty());
+}
+
+TEST(JsonOutput, IdentifyFromRigLogsPrintsOnlyJson) {
+  const fs::path rotor = scratch() / "rotor.csv";
+  const fs::path level = scratch() / "level.csv";
+  ASSERT_EQ(geaware("rig rotor --out '" + rotor.string() + "'").exit_code, 0);
+  ASSERT_EQ(geaware("rig platform --heights 0.07:1.0:0.05 --rpm 9000:15000:3000 --samples 5 --out '" +
+                    level.string() + "'")
+                .exit_code,
+            0);
+  const std::string vehicle = " --vehicle '" + oddlyNamedVehicle().string() + "'";
+  for (const auto& [kind, log] : {std::pair{"rotor", rotor}, std::pair{"platform", level},
+                                  std::pair{"correlations", level}}) {
+    const Json doc = parse(geaware(std::string("identify ") + kind + " '" + log.string() + "'" +
+                                   vehicle + " --json -"),
+                           std::string("identify ") + kind);
+    EXPECT_EQ(doc["command"], kind);
+    EXPECT_FALSE(doc[std::string(kind) == "correlations" ? "correlations" : "parameters"].empty())
+        << kind;
+  }
+}
+
+TEST(JsonOutput, IdentifyFlightOnAFlyLogPrintsOnlyJson) {
+  const fs::path log = scratch() / "fly.csv";
+  ASSERT_EQ(geaware("fly --trajectory lemniscate --height 0.3 --speed 2 --controller model:model_indi "
+                    "--quiet --out '" + log.string() + "'")
+                .exit_code,
+            0);
+  const Json doc = parse(geaware("identify flight '" + log.string() + "' --json -"), "identify flight");
+  EXPECT_FALSE(doc["parameters"].empty());
 }
 
 }  // namespace

@@ -135,6 +135,29 @@ TEST_F(RenderTest, ExportPngWritesARealPngOfTheWindowSize) {
   EXPECT_LT(bytes.size(), 10'000'000U);
 }
 
+// The whole page, not its first screen: six plots of 600 px are ≈ 3,800 px tall, and the PNG is
+// as tall as the page measured itself (within the margins of the page's layout).
+TEST_F(RenderTest, ExportPagePngHoldsTheWholePage) {
+  const fs::path html = dir_ / "tall.html";
+  const fs::path png = dir_ / "tall.png";
+  geaware::report::Page page("A tall page");
+  for (int i = 0; i < 6; ++i) {
+    geaware::report::Plot plot{"plot " + std::to_string(i), "x [m]", "y [m]", {}};
+    plot.height_px = 600;
+    plot.equal_aspect = i == 0;
+    plot.series.push_back({"s", {0.0, 1.0, 2.0}, {0.0, 1.0, 0.5}, "lines", "", "#d62728"});
+    page.addPlot(std::move(plot));
+  }
+  page.write(html);
+  geaware::report::exportPagePng(html, png, 1000);
+  std::ifstream in(png, std::ios::binary);
+  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  ASSERT_GE(bytes.size(), 24U);
+  EXPECT_EQ(bigEndian32(bytes, 16), 1000U);
+  EXPECT_GT(bigEndian32(bytes, 20), 6U * 600U);
+  EXPECT_LT(bigEndian32(bytes, 20), 6U * 600U + 1000U);
+}
+
 TEST_F(RenderTest, ExportOfAMissingPageThrowsNamingIt) {
   const fs::path missing = dir_ / "missing.html";
   try {
