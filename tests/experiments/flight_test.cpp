@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "geaware/experiments/flight_log.hpp"
+#include "geaware/experiments/progress.hpp"
 #include "geaware/io/vehicle_file.hpp"
 #include "geaware/neural/residual_network.hpp"
 #include "geaware/neural/trainer.hpp"
@@ -431,6 +432,40 @@ TEST(FlightLog, OneRowPerControlTickWithEveryColumn) {
   // 1 s hover + 2 s trajectory at 200 Hz, both ends included.
   EXPECT_EQ(n, 601u);
   std::filesystem::remove(file);
+}
+
+/// Records what a flight reports to a progress reporter.
+class RecordingProgress final : public Progress {
+ public:
+  void message(std::string_view text) override { messages.emplace_back(text); }
+  void update(double done, double total, std::string_view /*what*/) noexcept override {
+    if (done < last_done) backwards = true;
+    last_done = done;
+    last_total = total;
+    ++updates;
+  }
+  std::vector<std::string> messages;
+  double last_done = -1.0;
+  double last_total = 0.0;
+  int updates = 0;
+  bool backwards = false;
+};
+
+// A long flight says how far it is: every 200 control ticks (1 s at 200 Hz) and once at the
+// end, in simulated seconds that only grow, ending at the flight's simulated time.
+TEST(FlightProgress, ReportsSimulatedTimeUpToTheEnd) {
+  FlightScenario s = scenario(0.3, AccelerationCompensation::kModel, TorqueCompensation::kModel);
+  s.trajectory = lemniscate(0.3, 1.0);
+  RecordingProgress progress;
+  const double total = s.start_hover_s + s.trajectory->duration() + s.settle_s;
+  FlightProgressObserver observer(progress, total);
+  const FlightResult r = runFlight(s, &observer);
+  EXPECT_FALSE(progress.backwards);
+  EXPECT_EQ(progress.last_done, r.simulated_s);
+  EXPECT_EQ(progress.last_total, total);
+  const auto expected = static_cast<int>(r.control_ticks / 200) + 1;  // ticks 0, 200, … + the end
+  EXPECT_GE(progress.updates, expected);
+  EXPECT_LE(progress.updates, expected + 1);
 }
 
 TEST(FlightLog, AnUnwritableFileIsAnErrorNamingIt) {
