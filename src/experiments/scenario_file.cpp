@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "geaware/io/format_version.hpp"
+#include "geaware/io/height_map_file.hpp"
 #include "geaware/io/vehicle_file.hpp"
 #include "geaware/io/yaml_reader.hpp"
 #include "geaware/model/units.hpp"
@@ -106,9 +107,9 @@ std::shared_ptr<const sim::Terrain> readTerrain(io::MapReader& t, const std::fil
     const std::string file = t.text("file");
     if (!file.empty()) {
       const std::filesystem::path path = resolve(base, file);
-      // A height-map problem names its own file and line (sim::TerrainFileError); it is
+      // A height-map problem names its own file and line (io::HeightMapFileError); it is
       // reported here under the key that named the file.
-      out = buildOrReport(t, "file", [&] { return std::make_shared<const sim::HeightMap>(sim::HeightMap::fromFile(path.string())); });
+      out = buildOrReport(t, "file", [&] { return std::make_shared<const sim::HeightMap>(io::readHeightMapFile(path.string())); });
     }
   }
   t.rejectUnknownKeys();

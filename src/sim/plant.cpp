@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "geaware/model/field_check.hpp"
 #include "geaware/sim/terrains.hpp"
 
 namespace geaware::sim {
@@ -91,23 +92,23 @@ class MotorTorqueContribution final : public Contribution {
 namespace {
 
 const TruthParams& validated(const TruthParams& p, const PlantConfig& c, const PlantState& s) {
-  std::string msg;
-  for (const auto& e : p.validate())
-    msg += "\n  " + e.field + " = " + e.value + ": expected " + e.expected;
+  std::vector<model::FieldError> errors = p.validate();
   if (!(std::isfinite(c.step_s) && c.step_s > 0.0 && c.step_s <= 0.1)) {
-    msg += "\n  config.step_s = " + std::to_string(c.step_s) +
-           ": expected a finite step in (0, 0.1] s";
+    errors.push_back({"config.step_s", std::to_string(c.step_s), "a finite step in (0, 0.1] s"});
   }
   if (c.rim_samples < 3 || c.rim_samples > 64) {
-    msg += "\n  config.rim_samples = " + std::to_string(c.rim_samples) + ": expected 3…64";
+    errors.push_back({"config.rim_samples", std::to_string(c.rim_samples), "3…64"});
   }
   bool rpm_ok = true;
   for (double n : s.n_rpm) rpm_ok &= std::isfinite(n);
   if (!std::isfinite(s.t_s) || !s.p_W.allFinite() || !s.v_W.allFinite() ||
       !s.q_WB.coeffs().allFinite() || !(s.q_WB.norm() > 0.5) || !s.w_B.allFinite() || !rpm_ok) {
-    msg += "\n  initial state: expected finite values and a non-degenerate quaternion";
+    errors.push_back({"initial state", "non-finite or degenerate",
+                      "finite values and a non-degenerate quaternion"});
   }
-  if (!msg.empty()) throw std::invalid_argument("Plant: invalid parameters:" + msg);
+  if (!errors.empty()) {
+    throw std::invalid_argument(model::describeErrors("Plant: invalid parameters:", errors));
+  }
   return p;
 }
 
@@ -189,15 +190,11 @@ Plant::Plant(const TruthParams& params, std::shared_ptr<const Terrain> terrain,
   body_.w_B = state_.w_B;
   state_.n_rpm = motors_.speedsRpm();
   t0_s_ = state_.t_s;
-  // Terrains whose shape is known here get shortcuts (no virtual calls on flat ground; a strike
-  // pre-check against the highest point of a step or a height map). Others take the general path.
-  if (const auto* flat = dynamic_cast<const FlatGround*>(terrain_.get())) {
-    flat_z_m_ = flat->level();
-    terrain_top_m_ = flat->level();
-  } else if (const auto* step = dynamic_cast<const StepTerrain*>(terrain_.get())) {
-    terrain_top_m_ = step->maxHeight();
-  } else if (const auto* map = dynamic_cast<const HeightMap*>(terrain_.get())) {
-    terrain_top_m_ = map->maxHeight();
+  // Shortcuts the terrain offers: no virtual calls on flat ground, a strike pre-check against
+  // its highest point. Other terrains take the general path.
+  if (terrain_ != nullptr) {
+    flat_z_m_ = terrain_->flatLevel();
+    terrain_top_m_ = terrain_->heightBound();
   }
   for (auto& n : ground_normal_W_) n = Eigen::Vector3d::UnitZ();
 }

@@ -80,22 +80,12 @@ void LatticeRanger::measureInto(model::RangerFrame& f, const PlantState& s,
   const double r_max = params_.max_range_m;
   const int zones = params_.side * params_.side;
 
-  // Planes (flat ground, tilted board) in closed form, in the body frame: with the plane's
-  // normal n_B = Rᵀn and c = n·(p0 − o), zone d hits at r = c/(n_B·d) and meets the surface at
-  // cos(incidence) = −n_B·d. Same results as the terrains' own ray casts, without two virtual
-  // calls per zone.
-  std::optional<Eigen::Vector3d> n_B;
-  double c = 0.0;
-  if (const auto* flat = dynamic_cast<const FlatGround*>(terrain)) {
-    n_B = R_WB.row(2).transpose();
-    c = flat->level() - origin_W.z();
-  } else if (dynamic_cast<const TiltedPlane*>(terrain) != nullptr) {
-    const Eigen::Vector3d n_W = terrain->normalAt(0.0, 0.0);
-    n_B = R_WB.transpose() * n_W;
-    c = n_W.dot(Eigen::Vector3d(0.0, 0.0, terrain->heightAt(0.0, 0.0)) - origin_W);
-  }
-  // A height map is cast against directly (no virtual calls per zone).
-  const auto* map = n_B ? nullptr : dynamic_cast<const HeightMap*>(terrain);
+  // A plane (flat ground, tilted board) in closed form, in the body frame: with the plane's
+  // normal n_B and offset c seen from the ranger, zone d hits at r = c/(n_B·d) and meets the
+  // surface at cos(incidence) = −n_B·d. Same results as the terrains' own ray casts, without two
+  // virtual calls per zone. Other terrains answer each ray themselves (rangeHit).
+  const std::optional<LocalPlane> plane =
+      terrain != nullptr ? terrain->planeSeenFrom(R_WB, origin_W) : std::nullopt;
 
   for (int k = 0; k < zones; ++k) {
     const auto idx = static_cast<std::size_t>(k);
@@ -110,32 +100,18 @@ void LatticeRanger::measureInto(model::RangerFrame& f, const PlantState& s,
     //    the incidence limit (cos(incidence) below cos(max_incidence_rad)).
     double r = 0.0;
     bool grazing = false;
-    if (n_B) {
-      const double dn = n_B->dot(dir_B_[idx]);
+    if (plane) {
+      const double dn = plane->normal.dot(dir_B_[idx]);
       if (!(dn < 0.0)) continue;  // looking away from the plane
-      r = c / dn;
+      r = plane->offset_m / dn;
       grazing = -dn < min_cos_incidence_;
     } else {
       if (terrain == nullptr) continue;
-      const Eigen::Vector3d dir_W = R_WB * dir_B_[idx];
-      if (map != nullptr) {
-        // The height map's own cast gives ∇H at the hit. cos(incidence) = s/√(1 + |∇H|²) with
-        // s = −d·(−∇H, 1), tested as s ≥ 0 and s² ≥ cos²(limit)·(1 + |∇H|²) (the limit is
-        // ≤ 90°): no square root, no division.
-        const std::optional<HeightMapHit> hit = map->rayHitUnit(origin_W, dir_W, r_max);
-        if (!hit) continue;
-        r = hit->distance_m;
-        const Eigen::Vector2d& g = hit->gradient;
-        const double s_inc = dir_W.x() * g.x() + dir_W.y() * g.y() - dir_W.z();
-        grazing = !(s_inc >= 0.0 && s_inc * s_inc >= min_cos_incidence_ * min_cos_incidence_ *
-                                                         (1.0 + g.squaredNorm()));
-      } else {
-        const std::optional<double> hit = terrain->rayCast(origin_W, dir_W, r_max);
-        if (!hit) continue;
-        r = *hit;
-        const Eigen::Vector3d p_hit = origin_W + r * dir_W;
-        grazing = -dir_W.dot(terrain->normalAt(p_hit.x(), p_hit.y())) < min_cos_incidence_;
-      }
+      const std::optional<RangeHit> hit =
+          terrain->rangeHit(origin_W, R_WB * dir_B_[idx], r_max, min_cos_incidence_);
+      if (!hit) continue;
+      r = hit->distance_m;
+      grazing = hit->grazing;
     }
     // 3. Out of the working range, or grazing: no return.
     if (!(r >= r_min && r <= r_max) || grazing) continue;

@@ -23,10 +23,7 @@ constexpr int kDigits = 6;
 std::string show(double v) { return model::formatValue(v, kDigits); }
 
 [[noreturn]] void throwErrors(const char* what, const std::vector<model::FieldError>& errors) {
-  std::string msg = std::string(what) + ": invalid parameters:";
-  for (const auto& f : errors)
-    msg += "\n  " + f.field + " = " + f.value + " (expected " + f.expected + ")";
-  throw std::invalid_argument(msg);
+  throw std::invalid_argument(model::describeErrors(std::string(what) + ": invalid parameters:", errors));
 }
 
 void requireList(const std::vector<double>& v, const char* name, double lo, double hi,

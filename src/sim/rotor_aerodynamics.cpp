@@ -87,10 +87,8 @@ RotorAerodynamics::RotorAerodynamics(const RotorGeometry& geometry, const RotorA
                       "rotors spread wider than half a propeller radius"});
   }
   if (!errors.empty()) {
-    std::string msg = "RotorAerodynamics: invalid parameters:";
-    for (const auto& f : errors)
-      msg += "\n  " + f.field + " = " + f.value + " (expected " + f.expected + ")";
-    throw std::invalid_argument(msg);
+    throw std::invalid_argument(
+        model::describeErrors("RotorAerodynamics: invalid parameters:", errors));
   }
   const double R = geometry.radius_m;
   radius_sq_ = R * R;

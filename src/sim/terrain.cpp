@@ -3,15 +3,11 @@
 #include "geaware/sim/terrains.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <string_view>
-#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -82,6 +78,15 @@ std::optional<double> Terrain::rayCast(const Eigen::Vector3d& origin_W,
     t_prev = t;
     f_prev = f_t;
   }
+}
+
+std::optional<RangeHit> Terrain::rangeHit(const Eigen::Vector3d& origin_W,
+                                          const Eigen::Vector3d& unit_dir_W, double max_range_m,
+                                          double min_cos_incidence) const noexcept {
+  const std::optional<double> hit = rayCast(origin_W, unit_dir_W, max_range_m);
+  if (!hit) return std::nullopt;
+  const Eigen::Vector3d p_hit = origin_W + *hit * unit_dir_W;
+  return RangeHit{*hit, -unit_dir_W.dot(normalAt(p_hit.x(), p_hit.y())) < min_cos_incidence};
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -210,41 +215,6 @@ std::optional<double> StepTerrain::rayCast(const Eigen::Vector3d& origin_W,
 // ---------------------------------------------------------------------------------------------
 // HeightMap
 // ---------------------------------------------------------------------------------------------
-
-namespace {
-
-std::string locationPrefix(const std::string& file, int line, int column) {
-  std::string s = file;
-  if (line > 0) s += ":" + std::to_string(line);
-  if (line > 0 && column > 0) s += ":" + std::to_string(column);
-  return s;
-}
-
-std::string_view trim(std::string_view s) {
-  const auto first = s.find_first_not_of(" \t\r");
-  if (first == std::string_view::npos) return {};
-  const auto last = s.find_last_not_of(" \t\r");
-  return s.substr(first, last - first + 1);
-}
-
-/// Parses the whole of `s` as a double; nothing on failure.
-std::optional<double> parseNumber(std::string_view s) {
-  if (s.empty()) return std::nullopt;
-  if (s.front() == '+') s.remove_prefix(1);
-  double v = 0.0;
-  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (ec != std::errc() || ptr != s.data() + s.size()) return std::nullopt;
-  return v;
-}
-
-}  // namespace
-
-TerrainFileError::TerrainFileError(std::string file, int line, int column,
-                                   const std::string& message)
-    : std::runtime_error(locationPrefix(file, line, column) + ": " + message),
-      file_(std::move(file)),
-      line_(line),
-      column_(column) {}
 
 HeightMap::HeightMap(double origin_x_m, double origin_y_m, double cell_m,
                      const std::vector<std::vector<double>>& heights)
@@ -408,98 +378,20 @@ std::optional<HeightMapHit> HeightMap::walk(const Eigen::Vector3d& origin_W,
   }
 }
 
-HeightMap HeightMap::fromFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw TerrainFileError(path, 0, 0, "cannot open the height-map file");
-  std::optional<double> origin_x;
-  std::optional<double> origin_y;
-  std::optional<double> cell;
-  int first_data_line = 0;
-  std::vector<std::vector<double>> rows;
-  std::string text;
-  int line = 0;
-  while (std::getline(in, text)) {
-    ++line;
-    const std::string_view s = trim(text);
-    if (s.empty()) continue;
-    if (s.front() == '#') {
-      // "# key: value" for one of the known keys, anything else is a comment.
-      const std::string_view body = trim(s.substr(1));
-      const auto colon = body.find(':');
-      if (colon == std::string_view::npos) continue;
-      const std::string_view key = trim(body.substr(0, colon));
-      std::optional<double>* slot = key == "origin_x_m"   ? &origin_x
-                                    : key == "origin_y_m" ? &origin_y
-                                    : key == "cell_m"     ? &cell
-                                                          : nullptr;
-      if (slot == nullptr) continue;
-      if (first_data_line > 0) {
-        throw TerrainFileError(path, line, 0,
-                               "header key '" + std::string(key) +
-                                   "' after the first data row (line " +
-                                   std::to_string(first_data_line) + ")");
-      }
-      if (slot->has_value())
-        throw TerrainFileError(path, line, 0, "header key '" + std::string(key) + "' given twice");
-      const std::string_view value = trim(body.substr(colon + 1));
-      const auto v = parseNumber(value);
-      if (!v || !std::isfinite(*v)) {
-        throw TerrainFileError(path, line, 0,
-                               "header key '" + std::string(key) + "': '" + std::string(value) +
-                                   "' is not a finite number");
-      }
-      if (slot == &cell && !(*v > 0.0)) {
-        throw TerrainFileError(
-            path, line, 0, "header key 'cell_m': " + std::string(value) + " must be positive (m)");
-      }
-      *slot = *v;
-      continue;
-    }
-    if (first_data_line == 0) first_data_line = line;
-    std::vector<double> row;
-    std::size_t start = 0;
-    int column = 0;
-    for (;;) {
-      ++column;
-      const std::size_t comma = s.find(',', start);
-      const std::string_view field =
-          trim(s.substr(start, comma == std::string_view::npos ? s.npos : comma - start));
-      const auto v = parseNumber(field);
-      if (!v)
-        throw TerrainFileError(path, line, column, "'" + std::string(field) + "' is not a number");
-      if (!std::isfinite(*v))
-        throw TerrainFileError(path, line, column,
-                               "height '" + std::string(field) + "' is not finite");
-      row.push_back(*v);
-      if (comma == std::string_view::npos) break;
-      start = comma + 1;
-    }
-    if (!rows.empty() && row.size() != rows.front().size()) {
-      throw TerrainFileError(path, line, 0,
-                             "row has " + std::to_string(row.size()) +
-                                 " values, the first row (line " + std::to_string(first_data_line) +
-                                 ") has " + std::to_string(rows.front().size()) +
-                                 ": the grid must be rectangular");
-    }
-    rows.push_back(std::move(row));
-  }
-  const char* missing = !origin_x   ? "origin_x_m"
-                        : !origin_y ? "origin_y_m"
-                        : !cell     ? "cell_m"
-                                    : nullptr;
-  if (missing != nullptr) {
-    throw TerrainFileError(path, 0, 0,
-                           std::string("missing header key '") + missing + "' (a line '# " +
-                               missing + ": VALUE' before the data)");
-  }
-  if (rows.size() < 2 || rows.front().size() < 2) {
-    throw TerrainFileError(
-        path, 0, 0,
-        "the grid has " + std::to_string(rows.size()) + " rows of " +
-            std::to_string(rows.empty() ? 0 : rows.front().size()) +
-            " values; at least 2 rows of 2 are needed for bilinear interpolation");
-  }
-  return HeightMap(*origin_x, *origin_y, *cell, rows);
+HeightMap::HeightMap(const model::HeightGrid& grid)
+    : HeightMap(grid.origin_x_m, grid.origin_y_m, grid.cell_m, grid.heights) {}
+
+std::optional<RangeHit> HeightMap::rangeHit(const Eigen::Vector3d& origin_W,
+                                            const Eigen::Vector3d& unit_dir_W, double max_range_m,
+                                            double min_cos_incidence) const noexcept {
+  const std::optional<HeightMapHit> hit = rayHitUnit(origin_W, unit_dir_W, max_range_m);
+  if (!hit) return std::nullopt;
+  const Eigen::Vector2d& g = hit->gradient;
+  const Eigen::Vector3d& d = unit_dir_W;
+  const double s_inc = d.x() * g.x() + d.y() * g.y() - d.z();
+  const bool grazing = !(s_inc >= 0.0 && s_inc * s_inc >= min_cos_incidence * min_cos_incidence *
+                                                              (1.0 + g.squaredNorm()));
+  return RangeHit{hit->distance_m, grazing};
 }
 
 void HeightMap::locate(double x_m, double y_m, std::size_t& i, std::size_t& j, double& fx,

@@ -313,74 +313,16 @@ TEST(HeightMap, CellWalkRayCastMatchesTheMarchFromAnywhere) {
   EXPECT_GT(hits, 150);
 }
 
-class HeightMapFile : public ::testing::Test {
- protected:
-  std::string write(const std::string& name, const std::string& text) {
-    const std::string path = ::testing::TempDir() + "geaware_" + name;
-    std::ofstream(path) << text;
-    return path;
-  }
-  static constexpr const char* kHeader =
-      "# geaware height map\n# origin_x_m: -1.0\n# origin_y_m: 2.0\n# cell_m: 0.5\n";
-};
-
-TEST_F(HeightMapFile, LoadsAGrid) {
-  const std::string path = write(
-      "good.csv", std::string(kHeader) + "0.0, 0.1, 0.2\n\n0.5, 0.6, 0.7\n# a comment\n1, 1, +1\n");
-  const HeightMap m = HeightMap::fromFile(path);
+TEST(HeightMap, BuiltFromAGrid) {
+  const model::HeightGrid grid{-1.0, 2.0, 0.5, {{0.0, 0.1, 0.2}, {0.5, 0.6, 0.7}, {1.0, 1.0, 1.0}}};
+  const HeightMap m(grid);
   EXPECT_EQ(m.columns(), 3u);
   EXPECT_EQ(m.rows(), 3u);
   EXPECT_DOUBLE_EQ(m.cellSize(), 0.5);
+  EXPECT_DOUBLE_EQ(m.maxHeight(), 1.0);
   EXPECT_NEAR(m.heightAt(-1.0, 2.0), 0.0, 1e-15);
   EXPECT_NEAR(m.heightAt(-0.5, 2.5), 0.6, 1e-15);
   EXPECT_NEAR(m.heightAt(-0.75, 2.25), (0.0 + 0.1 + 0.5 + 0.6) / 4.0, 1e-15);
-}
-
-/// Expects fromFile(path) to throw a TerrainFileError at line/column whose message names the file.
-void expectFileError(const std::string& path, int line, int column, const std::string& fragment) {
-  try {
-    (void)HeightMap::fromFile(path);
-    ADD_FAILURE() << "no error for " << path;
-  } catch (const TerrainFileError& e) {
-    EXPECT_EQ(e.file(), path);
-    EXPECT_EQ(e.line(), line) << e.what();
-    EXPECT_EQ(e.column(), column) << e.what();
-    const std::string what = e.what();
-    EXPECT_NE(what.find(path), std::string::npos) << what;
-    EXPECT_NE(what.find(fragment), std::string::npos) << what;
-    if (line > 0) {
-      EXPECT_NE(what.find(path + ":" + std::to_string(line)), std::string::npos) << what;
-    }
-  }
-}
-
-TEST_F(HeightMapFile, RejectsARaggedRowNamingFileAndLine) {
-  const std::string path = write("ragged.csv", std::string(kHeader) + "0, 0, 0\n0, 0\n0, 0, 0\n");
-  expectFileError(path, 6, 0, "row has 2 values, the first row (line 5) has 3");
-}
-
-TEST_F(HeightMapFile, RejectsBadValuesNamingLineAndColumn) {
-  expectFileError(write("word.csv", std::string(kHeader) + "0, 0, 0\n0, abc, 0\n"), 6, 2,
-                  "'abc' is not a number");
-  expectFileError(write("nan.csv", std::string(kHeader) + "0, 0, nan\n0, 0, 0\n"), 5, 3,
-                  "not finite");
-  expectFileError(write("empty.csv", std::string(kHeader) + "0, , 0\n0, 0, 0\n"), 5, 2,
-                  "is not a number");
-}
-
-TEST_F(HeightMapFile, RejectsBadHeaders) {
-  expectFileError(write("nocell.csv", "# origin_x_m: 0\n# origin_y_m: 0\n0, 0\n0, 0\n"), 0, 0,
-                  "missing header key 'cell_m'");
-  expectFileError(
-      write("negcell.csv", "# origin_x_m: 0\n# origin_y_m: 0\n# cell_m: -1\n0, 0\n0, 0\n"), 3, 0,
-      "must be positive");
-  expectFileError(write("twice.csv", std::string(kHeader) + "# cell_m: 0.5\n0, 0\n0, 0\n"), 5, 0,
-                  "given twice");
-  expectFileError(write("late.csv", "# origin_x_m: 0\n# origin_y_m: 0\n0, 0\n# cell_m: 1\n0, 0\n"),
-                  4, 0, "after the first data row");
-  expectFileError(write("small.csv", std::string(kHeader) + "0, 0, 0\n"), 0, 0,
-                  "at least 2 rows of 2");
-  expectFileError(::testing::TempDir() + "geaware_does_not_exist.csv", 0, 0, "cannot open");
 }
 
 TEST(HeightMap, RejectsBadGridsInMemory) {

@@ -1,6 +1,6 @@
 #pragma once
 // The concrete terrains: flat ground, a tilted plane, a step or table edge, and a
-// height map loaded from a file. Each overrides rayCast with an exact method: a closed form for
+// height map (a grid of heights). Each overrides rayCast with an exact method: a closed form for
 // the planes and the step; for the height map, a walk over the cells under the ray with the
 // closed-form intersection of each cell's bilinear patch.
 
@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include "geaware/model/height_grid.hpp"
 #include "geaware/sim/terrain.hpp"
 
 namespace geaware::sim {
@@ -29,6 +30,13 @@ class FlatGround final : public Terrain {
                                               const Eigen::Vector3d& dir_W,
                                               double max_range_m) const noexcept override;
   [[nodiscard]] double level() const noexcept { return z0_m_; }  ///< z0 [m]
+  [[nodiscard]] std::optional<double> flatLevel() const noexcept override { return z0_m_; }
+  [[nodiscard]] std::optional<double> heightBound() const noexcept override { return z0_m_; }
+  /// normal = R_WBᵀ·z_W, offset = z0 − origin_z.
+  [[nodiscard]] std::optional<LocalPlane> planeSeenFrom(
+      const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& origin_W) const noexcept override {
+    return LocalPlane{R_WB.row(2).transpose(), z0_m_ - origin_W.z()};
+  }
 
  private:
   double z0_m_;
@@ -52,6 +60,12 @@ class TiltedPlane final : public Terrain {
   [[nodiscard]] std::optional<double> rayCast(const Eigen::Vector3d& origin_W,
                                               const Eigen::Vector3d& dir_W,
                                               double max_range_m) const noexcept override;
+  /// normal = R_WBᵀ·n_W, offset = n_W·((0, 0, H(0, 0)) − origin_W).
+  [[nodiscard]] std::optional<LocalPlane> planeSeenFrom(
+      const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& origin_W) const noexcept override {
+    return LocalPlane{R_WB.transpose() * n_W_,
+                      n_W_.dot(Eigen::Vector3d(0.0, 0.0, heightAt(0.0, 0.0)) - origin_W)};
+  }
 
  private:
   Eigen::Vector3d p_W_;
@@ -81,28 +95,13 @@ class StepTerrain final : public Terrain {
   [[nodiscard]] double maxHeight() const noexcept {
     return std::max(z_low_m_, z_high_m_);
   }  ///< [m]
+  [[nodiscard]] std::optional<double> heightBound() const noexcept override { return maxHeight(); }
 
  private:
   Eigen::Vector2d edge_point_W_;
   Eigen::Vector2d u_;  // unit, towards the high side
   double z_low_m_;
   double z_high_m_;
-};
-
-/// A problem in a height-map file; what() reads "FILE:LINE[:COLUMN]: message".
-class TerrainFileError : public std::runtime_error {
- public:
-  TerrainFileError(std::string file, int line, int column, const std::string& message);
-  [[nodiscard]] const std::string& file() const noexcept { return file_; }
-  [[nodiscard]] int line() const noexcept { return line_; }  ///< 1-based, 0: whole file
-  [[nodiscard]] int column() const noexcept {
-    return column_;
-  }  ///< 1-based CSV field, 0: whole line
-
- private:
-  std::string file_;
-  int line_;
-  int column_;
 };
 
 /// A ray's first hit on a height map: how far along the ray, and the surface gradient there.
@@ -112,25 +111,16 @@ struct HeightMapHit {
 };
 
 /// A regular grid of heights, bilinear between the nodes, held at the border value outside.
-/// Node (i, j) sits at (origin_x + i·cell, origin_y + j·cell); the file stores one CSV row per j
-/// (the first row at origin_y) with one value per i, in metres. File format:
-///
-///     # geaware height map
-///     # origin_x_m: -2.0
-///     # origin_y_m: -2.0
-///     # cell_m: 0.05
-///     0.00, 0.00, 0.01, ...
-///
-/// Header lines start with '#'; a line "# key: value" with one of the three keys sets it, every
-/// key is required once, other '#' lines are comments. Blank lines are skipped.
+/// Node (i, j) sits at (origin_x + i·cell, origin_y + j·cell). The file format is io/'s
+/// (io/height_map_file.hpp reads it into a model::HeightGrid).
 class HeightMap final : public Terrain {
  public:
   /// `heights[j][i]`; throws std::invalid_argument unless ≥ 2×2, rectangular, all finite, cell > 0.
   HeightMap(double origin_x_m, double origin_y_m, double cell_m,
             const std::vector<std::vector<double>>& heights);
 
-  /// Loads the format above; throws TerrainFileError naming the file, line and column.
-  [[nodiscard]] static HeightMap fromFile(const std::string& path);
+  /// The same from a grid (as read by io::readHeightMapFile).
+  explicit HeightMap(const model::HeightGrid& grid);
 
   [[nodiscard]] double heightAt(double x_m, double y_m) const noexcept override;
   [[nodiscard]] Eigen::Vector3d normalAt(double x_m, double y_m) const noexcept override;
@@ -152,6 +142,14 @@ class HeightMap final : public Terrain {
   [[nodiscard]] std::size_t rows() const noexcept { return ny_; }     ///< nodes along y
   [[nodiscard]] double cellSize() const noexcept { return cell_m_; }
   [[nodiscard]] double maxHeight() const noexcept { return max_z_m_; }  ///< highest node [m]
+  [[nodiscard]] std::optional<double> heightBound() const noexcept override { return max_z_m_; }
+  /// rayHitUnit() with the incidence test on the gradient at the hit: cos(incidence) =
+  /// s/√(1 + |∇H|²) with s = −d·(−∇H, 1), tested as s ≥ 0 and s² ≥ cos²(limit)·(1 + |∇H|²)
+  /// (the limit is ≤ 90°): no square root, no division.
+  [[nodiscard]] std::optional<RangeHit> rangeHit(const Eigen::Vector3d& origin_W,
+                                                 const Eigen::Vector3d& unit_dir_W,
+                                                 double max_range_m,
+                                                 double min_cos_incidence) const noexcept override;
 
  private:
   /// The cell walk of rayCast() and rayHitUnit() (the gradient only when kGradient).

@@ -1,0 +1,145 @@
+// The height-map file (docs/scenario-file.md): a regular grid of heights as CSV with a
+// '#'-comment header, read into a model::HeightGrid that sim::HeightMap is built from.
+#include "geaware/io/height_map_file.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <optional>
+#include <string_view>
+#include <system_error>
+#include <utility>
+
+namespace geaware::io {
+
+namespace {
+
+std::string locationPrefix(const std::string& file, int line, int column) {
+  std::string s = file;
+  if (line > 0) s += ":" + std::to_string(line);
+  if (line > 0 && column > 0) s += ":" + std::to_string(column);
+  return s;
+}
+
+std::string_view trim(std::string_view s) {
+  const auto first = s.find_first_not_of(" \t\r");
+  if (first == std::string_view::npos) return {};
+  const auto last = s.find_last_not_of(" \t\r");
+  return s.substr(first, last - first + 1);
+}
+
+/// Parses the whole of `s` as a double; nothing on failure.
+std::optional<double> parseNumber(std::string_view s) {
+  if (s.empty()) return std::nullopt;
+  if (s.front() == '+') s.remove_prefix(1);
+  double v = 0.0;
+  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc() || ptr != s.data() + s.size()) return std::nullopt;
+  return v;
+}
+
+}  // namespace
+
+
+HeightMapFileError::HeightMapFileError(std::string file, int line, int column,
+                                   const std::string& message)
+    : std::runtime_error(locationPrefix(file, line, column) + ": " + message),
+      file_(std::move(file)),
+      line_(line),
+      column_(column) {}
+
+model::HeightGrid readHeightMapFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw HeightMapFileError(path, 0, 0, "cannot open the height-map file");
+  std::optional<double> origin_x;
+  std::optional<double> origin_y;
+  std::optional<double> cell;
+  int first_data_line = 0;
+  std::vector<std::vector<double>> rows;
+  std::string text;
+  int line = 0;
+  while (std::getline(in, text)) {
+    ++line;
+    const std::string_view s = trim(text);
+    if (s.empty()) continue;
+    if (s.front() == '#') {
+      // "# key: value" for one of the known keys, anything else is a comment.
+      const std::string_view body = trim(s.substr(1));
+      const auto colon = body.find(':');
+      if (colon == std::string_view::npos) continue;
+      const std::string_view key = trim(body.substr(0, colon));
+      std::optional<double>* slot = key == "origin_x_m"   ? &origin_x
+                                    : key == "origin_y_m" ? &origin_y
+                                    : key == "cell_m"     ? &cell
+                                                          : nullptr;
+      if (slot == nullptr) continue;
+      if (first_data_line > 0) {
+        throw HeightMapFileError(path, line, 0,
+                               "header key '" + std::string(key) +
+                                   "' after the first data row (line " +
+                                   std::to_string(first_data_line) + ")");
+      }
+      if (slot->has_value())
+        throw HeightMapFileError(path, line, 0, "header key '" + std::string(key) + "' given twice");
+      const std::string_view value = trim(body.substr(colon + 1));
+      const auto v = parseNumber(value);
+      if (!v || !std::isfinite(*v)) {
+        throw HeightMapFileError(path, line, 0,
+                               "header key '" + std::string(key) + "': '" + std::string(value) +
+                                   "' is not a finite number");
+      }
+      if (slot == &cell && !(*v > 0.0)) {
+        throw HeightMapFileError(
+            path, line, 0, "header key 'cell_m': " + std::string(value) + " must be positive (m)");
+      }
+      *slot = *v;
+      continue;
+    }
+    if (first_data_line == 0) first_data_line = line;
+    std::vector<double> row;
+    std::size_t start = 0;
+    int column = 0;
+    for (;;) {
+      ++column;
+      const std::size_t comma = s.find(',', start);
+      const std::string_view field =
+          trim(s.substr(start, comma == std::string_view::npos ? s.npos : comma - start));
+      const auto v = parseNumber(field);
+      if (!v)
+        throw HeightMapFileError(path, line, column, "'" + std::string(field) + "' is not a number");
+      if (!std::isfinite(*v))
+        throw HeightMapFileError(path, line, column,
+                               "height '" + std::string(field) + "' is not finite");
+      row.push_back(*v);
+      if (comma == std::string_view::npos) break;
+      start = comma + 1;
+    }
+    if (!rows.empty() && row.size() != rows.front().size()) {
+      throw HeightMapFileError(path, line, 0,
+                             "row has " + std::to_string(row.size()) +
+                                 " values, the first row (line " + std::to_string(first_data_line) +
+                                 ") has " + std::to_string(rows.front().size()) +
+                                 ": the grid must be rectangular");
+    }
+    rows.push_back(std::move(row));
+  }
+  const char* missing = !origin_x   ? "origin_x_m"
+                        : !origin_y ? "origin_y_m"
+                        : !cell     ? "cell_m"
+                                    : nullptr;
+  if (missing != nullptr) {
+    throw HeightMapFileError(path, 0, 0,
+                           std::string("missing header key '") + missing + "' (a line '# " +
+                               missing + ": VALUE' before the data)");
+  }
+  if (rows.size() < 2 || rows.front().size() < 2) {
+    throw HeightMapFileError(
+        path, 0, 0,
+        "the grid has " + std::to_string(rows.size()) + " rows of " +
+            std::to_string(rows.empty() ? 0 : rows.front().size()) +
+            " values; at least 2 rows of 2 are needed for bilinear interpolation");
+  }
+  return model::HeightGrid{*origin_x, *origin_y, *cell, std::move(rows)};
+}
+
+}  // namespace geaware::io
