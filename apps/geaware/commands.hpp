@@ -44,5 +44,11 @@ Runner addFlyCommand(CLI::App& app);
 /// `geaware bench`: the paper's experiments (experiments/campaign.hpp): calibration, the
 /// Neural-Lander baseline, Table I and the hover experiment over seeds. docs/results.md.
 Runner addBenchCommand(CLI::App& app);
+/// `geaware identify {rotor,platform,flight,correlations} LOG.csv`: identification from rig and
+/// flight logs (ident/identify.hpp). docs/identification.md.
+Runner addIdentifyCommand(CLI::App& app);
+/// `geaware rig {platform,rotor,calibrate}`: the virtual test rigs on the truth simulator and the
+/// calibration of the truth against the paper's measurements. docs/sim-aerodynamics.md.
+Runner addRigCommand(CLI::App& app);
 
 }  // namespace geaware::cli

@@ -2,7 +2,7 @@
 // file (--out), one JSON object (--json) and an HTML report (--report). Thin: parse, read the
 // log, call the ident library (ident/identify.hpp), print and write.
 
-#include "identify_command.hpp"
+#include "commands.hpp"
 
 #include <filesystem>
 #include <iostream>

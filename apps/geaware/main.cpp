@@ -3,12 +3,11 @@
 
 #include <exception>
 #include <iostream>
+#include <utility>
 
 #include <CLI/CLI.hpp>
 
 #include "commands.hpp"
-#include "identify_command.hpp"
-#include "rig_command.hpp"
 
 namespace geaware::cli {
 namespace {
@@ -40,17 +39,16 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "geaware " + std::string(geaware::io::geawareVersion()) + " (" +
                                         std::string(geaware::io::geawareCommit()) + ")");
 
-  std::function<int()> run;
-  const auto model = geaware::cli::addModelCommand(app);
-  app.get_subcommand("model")->callback([&] { run = model; });
-  const auto identify = geaware::cli::addIdentifyCommand(app);
-  app.get_subcommand("identify")->callback([&] { run = identify; });
-  const auto rig = geaware::cli::addRigCommand(app);
-  app.get_subcommand("rig")->callback([&] { run = rig; });
-  const auto fly = geaware::cli::addFlyCommand(app);
-  app.get_subcommand("fly")->callback([&] { run = fly; });
-  const auto bench = geaware::cli::addBenchCommand(app);
-  app.get_subcommand("bench")->callback([&] { run = bench; });
+  namespace cli = geaware::cli;
+  cli::Runner run;
+  for (const auto& [name, add] : {std::pair{"model", &cli::addModelCommand},
+                                  std::pair{"identify", &cli::addIdentifyCommand},
+                                  std::pair{"rig", &cli::addRigCommand},
+                                  std::pair{"fly", &cli::addFlyCommand},
+                                  std::pair{"bench", &cli::addBenchCommand}}) {
+    cli::Runner runner = add(app);  // registers the subcommand `name`
+    app.get_subcommand(name)->callback([&run, runner] { run = runner; });
+  }
 
   try {
     app.parse(argc, argv);

@@ -3,7 +3,7 @@
 // measurements (docs/paper-facts.md).
 // Thin: parse, call experiments/rig_runs.hpp, write the rows, the JSON and the pages.
 
-#include "rig_command.hpp"
+#include "commands.hpp"
 
 #include <fmt/format.h>
 
