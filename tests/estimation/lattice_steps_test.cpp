@@ -1,0 +1,97 @@
+// The lattice estimator's steps alone: the regularised plane fit, inlier marking, the zone-patch
+// support rule, the RANSAC hypothesis and the surface under a point.
+#include "geaware/estimation/lattice_steps.hpp"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "geaware_test/eigen_matchers.hpp"
+
+namespace {
+
+using namespace geaware::estimation::lattice;
+using Eigen::Vector3d;
+
+/// A side×side grid of points on z = z0 + sx·x + sy·y, zone index i·side + j.
+Points grid(int side, double z0, double sx, double sy, double spacing = 0.05) {
+  Points w;
+  w.point_of_zone.fill(-1);
+  for (int i = 0; i < side; ++i) {
+    for (int j = 0; j < side; ++j) {
+      const double x = spacing * (i - 0.5 * (side - 1)), y = spacing * (j - 0.5 * (side - 1));
+      const auto k = static_cast<std::size_t>(w.n);
+      w.X[k] = Vector3d(x, y, z0 + sx * x + sy * y);
+      w.zone[k] = i * side + j;
+      w.label[k] = kUnassigned;
+      w.point_of_zone[static_cast<std::size_t>(i * side + j)] = w.n;
+      ++w.n;
+    }
+  }
+  return w;
+}
+
+TEST(LatticeSteps, FitPlaneRecoversATiltedPlaneWithoutPriorAndRejectsCollinearPoints) {
+  const Points w = grid(8, -0.5, 0.1, -0.2);
+  std::array<bool, kN> all{};
+  for (int i = 0; i < w.n; ++i) all[static_cast<std::size_t>(i)] = true;
+  const PlaneFit f = fitPlane(w, all, 0.0);
+  ASSERT_TRUE(f.ok);
+  const Vector3d n = Vector3d(-0.1, 0.2, 1.0).normalized();
+  EXPECT_MATRIX_NEAR(f.n, n, 1e-12);
+  EXPECT_NEAR(f.c, -0.5 * n.z(), 1e-12);
+  EXPECT_NEAR(f.rms, 0.0, 1e-12);
+  // A strong level prior pulls the slope towards zero.
+  EXPECT_GT(fitPlane(w, all, 1e6).n.z(), f.n.z());
+  // One row of zones only: collinear seen from above.
+  std::array<bool, kN> row{};
+  for (int j = 0; j < 8; ++j) row[static_cast<std::size_t>(j)] = true;
+  EXPECT_FALSE(fitPlane(w, row, 0.0).ok);
+}
+
+TEST(LatticeSteps, ZonePatchesKeepContiguousSupportOnly) {
+  Points w = grid(6, -0.4, 0.0, 0.0);
+  // Inliers: a 3×3 patch in one corner and two isolated zones.
+  for (int i = 0; i < w.n; ++i) w.inlier[static_cast<std::size_t>(i)] = false;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) w.inlier[static_cast<std::size_t>(i * 6 + j)] = true;
+  w.inlier[5 * 6 + 5] = true;
+  w.inlier[0 * 6 + 5] = true;
+  EXPECT_EQ(keepZonePatches(w, 6, 0, 4), 9);
+  EXPECT_EQ(w.label[0], 0);
+  EXPECT_EQ(w.label[2 * 6 + 2], 0);
+  EXPECT_EQ(w.label[5 * 6 + 5], kDiscarded);
+  EXPECT_EQ(w.label[0 * 6 + 5], kDiscarded);
+  EXPECT_EQ(w.label[3 * 6 + 3], kUnassigned);  // not an inlier: untouched
+  relabel(w, 0, 2);
+  EXPECT_EQ(w.label[1 * 6 + 1], 2);
+}
+
+TEST(LatticeSteps, MarkInliersAndTheHypothesisFindTheDominantPlane) {
+  Points w = grid(8, -0.3, 0.0, 0.0);
+  // Lift one corner 3×3 well off the floor (a box): not inliers of the floor.
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) w.X[static_cast<std::size_t>(i * 8 + j)].z() += 0.2;
+  EXPECT_EQ(markInliers(w, Vector3d::UnitZ(), -0.3, 0.01), 64 - 9);
+  for (int i = 0; i < w.n; ++i) w.pool[static_cast<std::size_t>(i)] = i;
+  SplitMix64 rng{42};
+  const Hypothesis h = bestHypothesis(w, w.n, rng, 40, std::cos(0.6), 0.03);
+  EXPECT_EQ(h.count, 64 - 9);
+  EXPECT_MATRIX_NEAR(h.n, Vector3d::UnitZ(), 1e-12);
+  EXPECT_NEAR(h.c, -0.3, 1e-12);
+  EXPECT_GT(h.proper, 0);
+}
+
+TEST(LatticeSteps, SurfaceUnderIsTheOwnerOfTheNearestSupportingZone) {
+  Points w = grid(4, -0.3, 0.0, 0.0, 1.0);  // x, y in {−1.5, −0.5, 0.5, 1.5}
+  for (int i = 0; i < w.n; ++i) w.label[static_cast<std::size_t>(i)] = w.X[static_cast<std::size_t>(i)].x() < 0 ? 0 : 1;
+  w.label[0] = kDiscarded;  // discarded points own nothing
+  double d = 0.0;
+  EXPECT_EQ(surfaceUnder(w, Vector3d(-0.6, 0.4, 0.0), d), 0);
+  EXPECT_NEAR(d, std::hypot(0.1, 0.1), 1e-12);
+  EXPECT_EQ(surfaceUnder(w, Vector3d(1.4, -1.4, 0.0), d), 1);
+  Points empty;
+  EXPECT_EQ(surfaceUnder(empty, Vector3d::Zero(), d), -1);
+}
+
+}  // namespace
