@@ -106,10 +106,9 @@ Runner addBenchCommand(CLI::App& app) {
       "bench",
       "The paper's experiments: calibrate on the virtual rigs, train the Neural-Lander baseline, "
       "fly Table I and the hover experiment over seeds, compare with the paper");
-  cmd->add_option("--vehicle", o->vehicle,
-                  "vehicle YAML file (default: the built-in paper quadrotor); the truth is built "
-                  "from it, the controller gets the parameters identified on the virtual rigs")
-      ->check(CLI::ExistingFile);
+  addVehicleOption(cmd, o->vehicle,
+                   "vehicle YAML file (default: the built-in paper quadrotor); the truth is built "
+                   "from it, the controller gets the parameters identified on the virtual rigs");
   cmd->add_option("--seeds", o->seeds, "flights per experiment and hover curve")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));

@@ -36,6 +36,11 @@ class UsageError : public std::invalid_argument {
 /// Writes `doc` with "provenance" (io::provenanceJson(run)) added to `path` ("-": stdout).
 void writeJsonOutput(const std::string& path, io::Json doc, const io::RunInfo& run);
 
+/// `--vehicle FILE` (an existing file) on `cmd`; `what` says what the file is used for here.
+CLI::Option* addVehicleOption(CLI::App* cmd, std::string& path,
+                              const std::string& what = "vehicle YAML file (default: the built-in "
+                                                        "paper quadrotor)");
+
 /// `geaware model`: the controller-side ground-effect model tabulated over heights.
 Runner addModelCommand(CLI::App& app);
 /// `geaware fly`: one closed-loop flight (experiments/flight.hpp): the Table I metrics, the

@@ -205,8 +205,7 @@ Runner addFlyCommand(CLI::App& app) {
   auto o = std::make_shared<FlyOptions>();
   auto* cmd = app.add_subcommand(
       "fly", "Fly a trajectory in the simulator in closed loop and report the tracking error");
-  cmd->add_option("--vehicle", o->vehicle, "vehicle YAML file (default: the built-in paper quadrotor)")
-      ->check(CLI::ExistingFile);
+  addVehicleOption(cmd, o->vehicle);
   auto* scenario = cmd->add_option("--scenario", o->scenario,
                                    "flight scenario YAML file (docs/scenario-file.md); replaces "
                                    "--vehicle, --trajectory…, --controller, --seed, --no-turbulence")

@@ -192,10 +192,9 @@ Runner addIdentifyCommand(CLI::App& app) {
     sub->add_option("log", opts->log, "the log (CSV; formats in docs/identification.md)")
         ->required()
         ->check(CLI::ExistingFile);
-    sub->add_option("--vehicle", opts->vehicle,
-                    "base vehicle file: b, m and the priors the fits need, and the file --out merges into "
-                    "(default: the built-in paper quadrotor)")
-        ->check(CLI::ExistingFile);
+    addVehicleOption(sub, opts->vehicle,
+                     "base vehicle file: b, m and the priors the fits need, and the file --out "
+                     "merges into (default: the built-in paper quadrotor)");
     sub->add_option("--out", opts->out, "write the base vehicle file with the fitted keys merged in");
     sub->add_option("--json", opts->json,
                     "write every parameter, standard error and residual RMS as JSON ('-': stdout, the text "

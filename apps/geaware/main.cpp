@@ -30,6 +30,10 @@ void writeJsonOutput(const std::string& path, io::Json doc, const io::RunInfo& r
   if (path != "-") std::cerr << "geaware: wrote " << path << "\n";
 }
 
+CLI::Option* addVehicleOption(CLI::App* cmd, std::string& path, const std::string& what) {
+  return cmd->add_option("--vehicle", path, what)->check(CLI::ExistingFile);
+}
+
 }  // namespace geaware::cli
 
 int main(int argc, char** argv) {

@@ -50,8 +50,7 @@ Runner addModelCommand(CLI::App& app) {
   auto opts = std::make_shared<ModelOptions>();
   auto* cmd = app.add_subcommand(
       "model", "Tabulate the ground-effect model (F_G, M_G, J', drag, hover rpm) over heights");
-  cmd->add_option("--vehicle", opts->vehicle, "vehicle YAML file (default: the built-in paper quadrotor)")
-      ->check(CLI::ExistingFile);
+  addVehicleOption(cmd, opts->vehicle);
   cmd->add_option("--heights", opts->heights, "rotor-plane heights FROM:TO:STEP [m]")->capture_default_str();
   cmd->add_option("--format", opts->format, "output format")
       ->check(CLI::IsMember({"table", "csv"}))

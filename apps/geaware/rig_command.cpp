@@ -175,9 +175,7 @@ Runner addRigCommand(CLI::App& app) {
   auto runner = std::make_shared<Runner>();
 
   const auto common = [&opts](CLI::App* cmd) {
-    cmd->add_option("--vehicle", opts->vehicle,
-                    "vehicle YAML file (default: the built-in paper quadrotor)")
-        ->check(CLI::ExistingFile);
+    addVehicleOption(cmd, opts->vehicle);
   };
 
   auto* platform = rig->add_subcommand(

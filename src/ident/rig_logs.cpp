@@ -1,6 +1,8 @@
 #include "geaware/ident/rig_logs.hpp"
 
+#include <array>
 #include <limits>
+#include <vector>
 #include <utility>
 
 #include "geaware/io/csv_reader.hpp"
@@ -28,83 +30,81 @@ CsvColumn velocity(const std::string& n) { return {n, -200.0, 200.0}; }  // [m/s
 CsvColumn quaternion(const std::string& n) { return {n, -1.000001, 1.000001}; }
 CsvColumn acceleration(const std::string& n) { return {n, -1000.0, 1000.0}; }  // [m/s²]
 
-CsvReadOptions optionsFor(std::vector<CsvColumn> columns, const std::string& t) {
-  CsvReadOptions o;
-  o.columns = std::move(columns);
-  o.time_column = t;
-  o.min_rows = 2;
-  return o;
-}
+/// The columns of one log: asked for in order by kind, then read and handed out in that order.
+class LogColumns {
+ public:
+  LogColumns& add(CsvColumn (*kind)(const std::string&), const std::string& name) {
+    columns_.push_back(kind(name));
+    return *this;
+  }
+  template <std::size_t N>
+  LogColumns& add(CsvColumn (*kind)(const std::string&), const std::array<std::string, N>& names) {
+    for (const auto& n : names) add(kind, n);
+    return *this;
+  }
+
+  /// Reads the file (the first column is the time); `log` gets its source and first data line.
+  template <typename Log>
+  void read(const std::filesystem::path& file, Log& log) {
+    CsvReadOptions o;
+    o.time_column = columns_.front().name;
+    o.columns = std::move(columns_);
+    o.min_rows = 2;
+    table_ = readCsv(file, o);
+    log.source = table_.source;
+    log.first_data_line = table_.first_data_line;
+  }
+  /// The next column, in the order added.
+  void take(std::vector<double>& out) { out = std::move(table_.columns.at(next_++)); }
+  template <std::size_t N>
+  void take(std::array<std::vector<double>, N>& out) {
+    for (auto& c : out) take(c);
+  }
+
+ private:
+  std::vector<CsvColumn> columns_;
+  CsvTable table_;
+  std::size_t next_ = 0;
+};
 
 }  // namespace
 
 PlatformLog readPlatformLog(const std::filesystem::path& file, const PlatformColumns& c) {
-  std::vector<CsvColumn> cols = {time(c.t), height(c.h), tilt(c.tilt)};
-  for (const auto& n : c.n) cols.push_back(speed(n));
-  for (const auto& n : c.f) cols.push_back(force(n));
-  for (const auto& n : c.tau) cols.push_back(torque(n));
-  CsvTable table = readCsv(file, optionsFor(std::move(cols), c.t));
   PlatformLog log;
-  log.source = table.source;
-  log.first_data_line = table.first_data_line;
-  auto& k = table.columns;
-  log.t_s = std::move(k[0]);
-  log.h_m = std::move(k[1]);
-  log.tilt_deg = std::move(k[2]);
-  for (std::size_t i = 0; i < 4; ++i) log.n_rpm[i] = std::move(k[3 + i]);
-  for (std::size_t i = 0; i < 3; ++i) log.f_N[i] = std::move(k[7 + i]);
-  for (std::size_t i = 0; i < 3; ++i) log.tau_Nm[i] = std::move(k[10 + i]);
+  LogColumns k;
+  k.add(time, c.t).add(height, c.h).add(tilt, c.tilt).add(speed, c.n).add(force, c.f).add(torque, c.tau);
+  k.read(file, log);
+  k.take(log.t_s); k.take(log.h_m); k.take(log.tilt_deg);
+  k.take(log.n_rpm); k.take(log.f_N); k.take(log.tau_Nm);
   return log;
 }
 
 RotorStandLog readRotorStandLog(const std::filesystem::path& file, const RotorStandColumns& c) {
-  CsvTable table = readCsv(file, optionsFor({time(c.t), unit(c.throttle), speed(c.rpm),
-                                             force(c.thrust), torque(c.torque)},
-                                            c.t));
   RotorStandLog log;
-  log.source = table.source;
-  log.first_data_line = table.first_data_line;
-  auto& k = table.columns;
-  log.t_s = std::move(k[0]);
-  log.throttle = std::move(k[1]);
-  log.rpm = std::move(k[2]);
-  log.thrust_N = std::move(k[3]);
-  log.torque_Nm = std::move(k[4]);
+  LogColumns k;
+  k.add(time, c.t).add(unit, c.throttle).add(speed, c.rpm).add(force, c.thrust).add(torque, c.torque);
+  k.read(file, log);
+  k.take(log.t_s); k.take(log.throttle); k.take(log.rpm); k.take(log.thrust_N); k.take(log.torque_Nm);
   return log;
 }
 
 FlightLog readFlightLog(const std::filesystem::path& file, const FlightColumns& c) {
-  std::vector<CsvColumn> cols = {time(c.t), height(c.h)};
-  for (const auto& n : c.v) cols.push_back(velocity(n));
-  for (const auto& n : c.q) cols.push_back(quaternion(n));
-  for (const auto& n : c.a_ext) cols.push_back(acceleration(n));
-  for (const auto& n : c.n) cols.push_back(speed(n));
-  CsvTable table = readCsv(file, optionsFor(std::move(cols), c.t));
   FlightLog log;
-  log.source = table.source;
-  log.first_data_line = table.first_data_line;
-  auto& k = table.columns;
-  log.t_s = std::move(k[0]);
-  log.h_m = std::move(k[1]);
-  for (std::size_t i = 0; i < 3; ++i) log.v_W[i] = std::move(k[2 + i]);
-  for (std::size_t i = 0; i < 4; ++i) log.q_WB[i] = std::move(k[5 + i]);
-  for (std::size_t i = 0; i < 3; ++i) log.a_ext_W[i] = std::move(k[9 + i]);
-  for (std::size_t i = 0; i < 4; ++i) log.n_rpm[i] = std::move(k[12 + i]);
+  LogColumns k;
+  k.add(time, c.t).add(height, c.h).add(velocity, c.v).add(quaternion, c.q);
+  k.add(acceleration, c.a_ext).add(speed, c.n);
+  k.read(file, log);
+  k.take(log.t_s); k.take(log.h_m); k.take(log.v_W); k.take(log.q_WB); k.take(log.a_ext_W);
+  k.take(log.n_rpm);
   return log;
 }
 
 FlightLog readHoverLog(const std::filesystem::path& file, const FlightColumns& c) {
-  std::vector<CsvColumn> cols = {time(c.t), height(c.h), acceleration(c.a_ext[2])};
-  for (const auto& n : c.n) cols.push_back(speed(n));
-  CsvTable table = readCsv(file, optionsFor(std::move(cols), c.t));
   FlightLog log;
-  log.source = table.source;
-  log.first_data_line = table.first_data_line;
-  auto& k = table.columns;
-  log.t_s = std::move(k[0]);
-  log.h_m = std::move(k[1]);
-  log.a_ext_W[2] = std::move(k[2]);
-  for (std::size_t i = 0; i < 4; ++i) log.n_rpm[i] = std::move(k[3 + i]);
+  LogColumns k;
+  k.add(time, c.t).add(height, c.h).add(acceleration, c.a_ext[2]).add(speed, c.n);
+  k.read(file, log);
+  k.take(log.t_s); k.take(log.h_m); k.take(log.a_ext_W[2]); k.take(log.n_rpm);
   return log;
 }
 
