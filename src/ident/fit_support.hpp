@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <sstream>
 #include <utility>
 #include <string>
@@ -42,6 +43,17 @@ inline void warnIfManyOutliers(std::vector<std::string>& warnings, const std::st
                        std::to_string(s.count + s.outliers) +
                        " samples were dropped as outliers (model mismatch or bad data?)");
   }
+}
+
+/// The warnings of a fit of a curve over heights: each of `params` poorly constrained (the hint
+/// names the logged heights [h_min_m, h_max_m] and `advice`), and too many outliers (`what`).
+inline void warnCurveFit(std::vector<std::string>& warnings, const std::string& what,
+                         std::initializer_list<std::pair<const char*, const Estimate*>> params,
+                         double h_min_m, double h_max_m, const std::string& advice,
+                         const FitStats& stats) {
+  const std::string hint = "heights " + num(h_min_m) + "–" + num(h_max_m) + " m; " + advice;
+  for (const auto& [name, e] : params) warnIfImprecise(warnings, name, *e, hint);
+  warnIfManyOutliers(warnings, what, stats);
 }
 
 /// Adds a warning naming the knots of a table that fewer than `min_samples` samples support:

@@ -31,12 +31,10 @@ AdditionalThrustFit fitHoverAdditionalThrust(const FlightLog& log, double mass_k
   }
   AdditionalThrustFit out = detail::fitThrustWithGroundEffect(
       S, log.h_m, f, robust, log.source, "k_T, g1, g2 of F_G(h) = g2/(h² + g1) from the hover descent");
-  const std::string hint = "heights " + num(out.h_min_m) + "–" + num(out.h_max_m) +
-                           " m; descend from out of ground effect to the lowest height";
-  detail::warnIfImprecise(out.warnings, "k_T", out.k_T_N_per_rpm2, hint);
-  detail::warnIfImprecise(out.warnings, "g1", out.g1_m2, hint);
-  detail::warnIfImprecise(out.warnings, "g2", out.g2_m2, hint);
-  detail::warnIfManyOutliers(out.warnings, "hover F_G fit", out.stats);
+  detail::warnCurveFit(out.warnings, "hover F_G fit",
+                       {{"k_T", &out.k_T_N_per_rpm2}, {"g1", &out.g1_m2}, {"g2", &out.g2_m2}},
+                       out.h_min_m, out.h_max_m,
+                       "descend from out of ground effect to the lowest height", out.stats);
   return out;
 }
 

@@ -185,12 +185,10 @@ LevelingFit fitLeveling(const PlatformLog& log, const LevelingInputs& in,
   out.stats = fit.stats;
   const double g3 = out.g3_m.value;
   out.peak_height_m = (-g3 + std::sqrt(g3 * g3 + 12.0 * out.g4_m2.value)) / 6.0;
-  const std::string hint = "heights " + num(out.h_min_m) + "–" + num(out.h_max_m) +
-                           " m; log heights on both sides of the torque's peak";
-  detail::warnIfImprecise(out.warnings, "g3", out.g3_m, hint);
-  detail::warnIfImprecise(out.warnings, "g4", out.g4_m2, hint);
-  detail::warnIfImprecise(out.warnings, "scale", out.scale_m4, hint);
-  detail::warnIfManyOutliers(out.warnings, "leveling fit", out.stats);
+  detail::warnCurveFit(out.warnings, "leveling fit",
+                       {{"g3", &out.g3_m}, {"g4", &out.g4_m2}, {"scale", &out.scale_m4}},
+                       out.h_min_m, out.h_max_m, "log heights on both sides of the torque's peak",
+                       out.stats);
   if (!(out.peak_height_m > out.h_min_m && out.peak_height_m < out.h_max_m)) {
     out.warnings.push_back("the fitted peak of M_G (" + num(out.peak_height_m) +
                            " m) lies outside the logged heights (" + num(out.h_min_m) + "–" +

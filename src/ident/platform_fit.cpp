@@ -149,11 +149,9 @@ AdditionalThrustFit fitAdditionalThrust(const PlatformLog& log, const PlatformFi
   }
   AdditionalThrustFit out = detail::fitThrustWithGroundEffect(
       S, h, fz, options.robust, log.source, "k_T, g1, g2 (F_G(h) = g2/(h² + g1) on the level board)");
-  const std::string range = "heights " + num(out.h_min_m) + "–" + num(out.h_max_m) +
-                            " m; log heights from the lowest flyable to well out of ground effect";
-  detail::warnIfImprecise(out.warnings, "g1", out.g1_m2, range);
-  detail::warnIfImprecise(out.warnings, "g2", out.g2_m2, range);
-  detail::warnIfManyOutliers(out.warnings, "F_G fit", out.stats);
+  detail::warnCurveFit(out.warnings, "F_G fit", {{"g1", &out.g1_m2}, {"g2", &out.g2_m2}},
+                       out.h_min_m, out.h_max_m,
+                       "log heights from the lowest flyable to well out of ground effect", out.stats);
   return out;
 }
 
