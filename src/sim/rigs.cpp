@@ -41,20 +41,6 @@ void requireList(const std::vector<double>& v, const char* name, double lo, doub
 
 }  // namespace
 
-double SeededGaussian::operator()(double sigma) {
-  if (has_spare_) {
-    has_spare_ = false;
-    return sigma * spare_;
-  }
-  // u1 in (0, 1], u2 in [0, 1): 53-bit mantissas, the mapping fixed here (not by the library).
-  const double u1 = (static_cast<double>(rng_() >> 11) + 1.0) * 0x1.0p-53;
-  const double u2 = static_cast<double>(rng_() >> 11) * 0x1.0p-53;
-  const double r = std::sqrt(-2.0 * std::log(u1));
-  const double a = 2.0 * std::numbers::pi * u2;
-  spare_ = r * std::sin(a);
-  has_spare_ = true;
-  return sigma * r * std::cos(a);
-}
 
 RotorGeometry rigGeometry(const model::VehicleParams& vehicle) {
   RotorGeometry g;
@@ -136,7 +122,7 @@ std::size_t ForceTorquePlatform::sweep(
     throw std::invalid_argument("platform sweep: rpm differences given but no axis");
   if (!sink) throw std::invalid_argument("platform sweep: no row sink");
 
-  SeededGaussian noise(seed);
+  NoiseSource noise = NoiseSource::fromEngineSeed(seed);
   const Eigen::Matrix4d& A = model::Mixer::allocationPattern();
   const std::size_t total = sw.setpointCount();
   std::size_t done = 0;
@@ -159,9 +145,9 @@ std::size_t ForceTorquePlatform::sweep(
     for (int k = 0; k < params_.samples_per_setpoint; ++k) {
       row.t_s = static_cast<double>(done) * setpoint_s + k * params_.sample_period_s;
       for (int a = 0; a < 3; ++a)
-        row.force_B[a] = w.wrench.force_B[a] + noise(params_.force_noise_N);
+        row.force_B[a] = w.wrench.force_B[a] + noise.boxMuller(params_.force_noise_N);
       for (int a = 0; a < 3; ++a)
-        row.torque_B[a] = w.wrench.torque_B[a] + noise(params_.torque_noise_Nm);
+        row.torque_B[a] = w.wrench.torque_B[a] + noise.boxMuller(params_.torque_noise_Nm);
       sink(row);
       ++rows;
     }
@@ -230,7 +216,7 @@ std::size_t RotorStand::sweep(const std::vector<double>& throttles, std::uint64_
   const model::ThrottleCurve curve(vehicle_.throttle);
   const double tau = params_.motor_time_constant_s;
   const auto& rp = vehicle_.rotor;
-  SeededGaussian noise(seed);
+  NoiseSource noise = NoiseSource::fromEngineSeed(seed);
   // Samples per hold: floor(hold/period) + 1 guards against rounding, at least one.
   const auto per_hold =
       static_cast<long>(std::floor(params_.hold_s / params_.sample_period_s + 1e-9));
@@ -248,9 +234,9 @@ std::size_t RotorStand::sweep(const std::vector<double>& throttles, std::uint64_
       const double n_dot = -(n_start - n_ss) / tau * e;  // [rpm/s]
       row.t_s = t0 + s;
       row.throttle = th;
-      row.rpm = n + noise(params_.rpm_noise);
-      row.thrust_N = model::rotorThrust(rp, n) + noise(params_.thrust_noise_N);
-      row.torque_Nm = model::rotorReactionTorque(rp, n, n_dot) + noise(params_.torque_noise_Nm);
+      row.rpm = n + noise.boxMuller(params_.rpm_noise);
+      row.thrust_N = model::rotorThrust(rp, n) + noise.boxMuller(params_.thrust_noise_N);
+      row.torque_Nm = model::rotorReactionTorque(rp, n, n_dot) + noise.boxMuller(params_.torque_noise_Nm);
       sink(row);
       ++rows;
     }

@@ -1,6 +1,7 @@
 #include "geaware/sim/sampling.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <limits>
 
 namespace geaware::sim {
@@ -90,6 +91,25 @@ NoiseSource::NoiseSource(std::uint64_t scenario_seed, std::uint64_t stream_salt)
     : engine_(streamSeed(scenario_seed, stream_salt)),
       zig_x_(zigguratTables().x.data()),
       zig_r_(zigguratTables().r.data()) {}
+
+NoiseSource::NoiseSource(EngineSeed, std::uint64_t seed)
+    : engine_(seed), zig_x_(zigguratTables().x.data()), zig_r_(zigguratTables().r.data()) {}
+
+NoiseSource NoiseSource::fromEngineSeed(std::uint64_t seed) { return {EngineSeed{}, seed}; }
+
+double NoiseSource::boxMuller(double sigma) noexcept {
+  if (has_spare_) {
+    has_spare_ = false;
+    return sigma * spare_;
+  }
+  const double u1 = (static_cast<double>(engine_() >> 11) + 1.0) * 0x1.0p-53;  // (0, 1]
+  const double u2 = static_cast<double>(engine_() >> 11) * 0x1.0p-53;          // [0, 1)
+  const double r = std::sqrt(-2.0 * std::log(u1));
+  const double a = 2.0 * std::numbers::pi * u2;
+  spare_ = r * std::sin(a);
+  has_spare_ = true;
+  return sigma * r * std::cos(a);
+}
 
 double NoiseSource::normalSlow(double u, int i) noexcept {
   // The bottom layer's overhang is the tail beyond R.

@@ -1,5 +1,7 @@
 #include "geaware/sim/truth_params.hpp"
 
+#include "geaware/sim/sampling.hpp"
+
 #include <cmath>
 #include <random>
 #include <string>
@@ -141,13 +143,10 @@ TruthParams fromNominal(const model::VehicleParams& nominal) {
 }
 
 TruthParams perturbed(const TruthParams& base, const MismatchSpec& spec, std::uint64_t seed) {
-  // mt19937_64 and the explicit mapping below are specified bit for bit by the standard, so the
-  // same seed gives the same vehicle everywhere (std::uniform_real_distribution is not).
-  std::mt19937_64 rng(seed);
-  const auto uniform = [&rng](double bound) {
-    const double u01 = static_cast<double>(rng() >> 11) * 0x1.0p-53;  // [0, 1)
-    return bound * (2.0 * u01 - 1.0);
-  };
+  // The engine and the mapping are specified bit for bit (sim/sampling.hpp), so the same seed
+  // gives the same vehicle everywhere (std::uniform_real_distribution is not).
+  NoiseSource rng = NoiseSource::fromEngineSeed(seed);
+  const auto uniform = [&rng](double bound) { return bound * (2.0 * rng.uniformHalfOpen() - 1.0); };
   TruthParams p = base;
   p.mass_kg = base.mass_kg * (1.0 + uniform(spec.mass_rel));
   // Scale the principal moments in the inertia's own axes; clamp so that the triangle

@@ -7,6 +7,8 @@
 
 #include <cmath>
 #include <cstring>
+#include <numbers>
+#include <random>
 #include <vector>
 
 #include "geaware/model/mixer.hpp"
@@ -44,18 +46,37 @@ PlatformSweep smallSweep() {
   return sw;
 }
 
-TEST(SeededGaussian, SameSeedSameSequenceAndUnitVariance) {
-  SeededGaussian a(7);
-  SeededGaussian b(7);
-  SeededGaussian c(8);
+TEST(RigNoise, BoxMullerOnTheEngineSeedIsTheRigsFormerStream) {
+  // The rigs' stream before it moved into NoiseSource: Box–Muller on std::mt19937_64(seed).
+  std::mt19937_64 rng(11);
+  auto noise = NoiseSource::fromEngineSeed(11);
+  for (int k = 0; k < 1000; ++k) {
+    const double u1 = (static_cast<double>(rng() >> 11) + 1.0) * 0x1.0p-53;
+    const double u2 = static_cast<double>(rng() >> 11) * 0x1.0p-53;
+    const double r = std::sqrt(-2.0 * std::log(u1));
+    const double a = 2.0 * std::numbers::pi * u2;
+    ASSERT_EQ(noise.boxMuller(0.5), 0.5 * r * std::cos(a)) << k;
+    ASSERT_EQ(noise.boxMuller(2.0), 2.0 * r * std::sin(a)) << k;
+  }
+  std::mt19937_64 rng2(5);
+  auto u = NoiseSource::fromEngineSeed(5);
+  for (int k = 0; k < 1000; ++k) {
+    ASSERT_EQ(u.uniformHalfOpen(), static_cast<double>(rng2() >> 11) * 0x1.0p-53) << k;
+  }
+}
+
+TEST(RigNoise, SameSeedSameSequenceAndUnitVariance) {
+  auto a = NoiseSource::fromEngineSeed(7);
+  auto b = NoiseSource::fromEngineSeed(7);
+  auto c = NoiseSource::fromEngineSeed(8);
   double sum = 0.0;
   double sum_sq = 0.0;
   bool differs = false;
   const int N = 200000;
   for (int k = 0; k < N; ++k) {
-    const double x = a(1.0);
-    EXPECT_EQ(x, b(1.0));
-    differs = differs || x != c(1.0);
+    const double x = a.boxMuller(1.0);
+    EXPECT_EQ(x, b.boxMuller(1.0));
+    differs = differs || x != c.boxMuller(1.0);
     sum += x;
     sum_sq += x * x;
   }

@@ -17,28 +17,15 @@
 #include <array>
 #include <cstdint>
 #include <functional>
-#include <random>
 #include <string>
 #include <vector>
 
 #include "geaware/model/vehicle_params.hpp"
 #include "geaware/sim/rotor_aerodynamics.hpp"
+#include "geaware/sim/sampling.hpp"
 
 namespace geaware::sim {
 
-/// Gaussian samples from mt19937_64 by Box–Muller with an explicit [0, 1) mapping: unlike
-/// std::normal_distribution, the sequence is the same on every standard library.
-class SeededGaussian {
- public:
-  explicit SeededGaussian(std::uint64_t seed) : rng_(seed) {}
-  /// One N(0, σ²) sample (σ = 0 still draws, so the sequence does not depend on σ).
-  [[nodiscard]] double operator()(double sigma);
-
- private:
-  std::mt19937_64 rng_;
-  double spare_ = 0.0;
-  bool has_spare_ = false;
-};
 
 /// The truth rotor geometry of a nominal vehicle (X layout of model::Mixer, nominal k_T, k_I,
 /// radius), as the rigs mount it: positions relative to the geometric centre.

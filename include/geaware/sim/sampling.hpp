@@ -64,10 +64,25 @@ class Mt19937_64 {
 /// the scenario seed and the salt, so that nearby seeds or salts give unrelated streams.
 [[nodiscard]] std::uint64_t streamSeed(std::uint64_t scenario_seed, std::uint64_t stream_salt) noexcept;
 
-/// One seeded random stream: uniforms and standard normals.
+/// One seeded random stream: the one random source of the simulator (sensors, disturbances,
+/// the virtual rigs, the truth mismatch). Uniforms and standard normals; each mapping from the
+/// engine's 64-bit draws is fixed here, so a stream is the same on every standard library.
 class NoiseSource {
  public:
+  /// The stream of a scenario seed and a salt (streamSeed): one per sensor or disturbance.
   NoiseSource(std::uint64_t scenario_seed, std::uint64_t stream_salt);
+  /// The stream of the engine seeded with `seed` itself (the rigs, the truth mismatch).
+  [[nodiscard]] static NoiseSource fromEngineSeed(std::uint64_t seed);
+
+  /// Uniform in [0, 1), 53 random bits.
+  [[nodiscard]] double uniformHalfOpen() noexcept {
+    return static_cast<double>(engine_() >> 11) * 0x1.0p-53;
+  }
+
+  /// One N(0, σ²) sample by Box–Muller with u1 in (0, 1] and u2 in [0, 1), the second value of
+  /// each pair kept for the next call (σ = 0 still draws, so the sequence does not depend on σ).
+  /// The rigs' noise; the sensors use the faster normal().
+  [[nodiscard]] double boxMuller(double sigma) noexcept;
 
   /// Uniform in the open interval (0, 1), 53 random bits.
   [[nodiscard]] double uniform() noexcept {
@@ -99,7 +114,12 @@ class NoiseSource {
   [[nodiscard]] double normalSlow(double u, int layer) noexcept;
   [[nodiscard]] double normalTail(bool negative) noexcept;
 
+  struct EngineSeed {};
+  NoiseSource(EngineSeed, std::uint64_t seed);
+
   Mt19937_64 engine_;
+  double spare_ = 0.0;  // Box–Muller's second value
+  bool has_spare_ = false;
   const double* zig_x_;  // ziggurat layer edges (shared, computed once)
   const double* zig_r_;  // their ratios
 };
