@@ -1,7 +1,10 @@
 #include "geaware/io/yaml_reader.hpp"
 
+#include <cctype>
+#include <charconv>
 #include <cmath>
 #include <limits>
+#include <system_error>
 
 namespace geaware::io {
 namespace {
@@ -32,9 +35,55 @@ bool toNumber(const YAML::Node& n, double& out) {
   }
 }
 
+/// A finite number, parsed strictly with std::from_chars (a leading '+' allowed, nothing after
+/// the number); NaN after a problem at `path`.
+double strictFinite(const YAML::Node& n, const std::string& path, YamlContext& ctx) {
+  if (!n.IsScalar()) {
+    ctx.problem(lineOfNode(n), path, std::string("expected a number, got ") + typeName(n));
+    return kNaN;
+  }
+  const std::string& s = n.Scalar();
+  double v = kNaN;
+  const char* first = s.data();
+  const char* last = s.data() + s.size();
+  if (!s.empty() && s[0] == '+') ++first;
+  const auto res = std::from_chars(first, last, v);
+  if (res.ec == std::errc() && res.ptr == last && std::isfinite(v)) return v;
+  std::string lower;
+  for (char c : s) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const bool special = (res.ec == std::errc() && res.ptr == last) ||
+                       lower.find("nan") != std::string::npos ||
+                       lower.find("inf") != std::string::npos;
+  ctx.problem(lineOfNode(n), path,
+              special ? "'" + s + "' is not a finite number"
+                      : "expected a number, got '" + s + "'");
+  return kNaN;
+}
+
+/// A list of finite numbers at `path`; with `length`, another count is a problem.
+std::vector<double> strictFiniteList(const YAML::Node& n, const std::string& path,
+                                     std::optional<std::size_t> length, YamlContext& ctx) {
+  std::vector<double> out;
+  if (!n.IsSequence()) {
+    ctx.problem(lineOfNode(n), path, std::string("expected a list of numbers, got ") + typeName(n));
+    return out;
+  }
+  if (length && n.size() != *length) {
+    ctx.problem(lineOfNode(n), path,
+                "has " + std::to_string(n.size()) + " entries, expected " + std::to_string(*length));
+  }
+  out.reserve(n.size());
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    const std::string item = path + "[" + std::to_string(i) + "]";
+    ctx.lines[item] = lineOfNode(n[i]);
+    out.push_back(strictFinite(n[i], item, ctx));
+  }
+  return out;
+}
+
 }  // namespace
 
-int YamlContext::lineOf(std::string key) const {
+int lineOfKey(const std::map<std::string, int>& lines, std::string key) {
   while (true) {
     if (auto it = lines.find(key); it != lines.end()) return it->second;
     const auto cut = key.find_last_of(".[");
@@ -213,6 +262,118 @@ std::string MapReader::choice(const std::string& key, const std::vector<std::str
   for (const auto& c : choices) list += (list.empty() ? "" : ", ") + c;
   ctx_.problem(ctx_.lineOf(pathOf(key)), pathOf(key), "got '" + v + "', expected one of: " + list);
   return {};
+}
+
+double MapReader::finiteNumber(const std::string& key) {
+  const YAML::Node n = required(key);
+  return n.IsDefined() ? strictFinite(n, pathOf(key), ctx_) : kNaN;
+}
+
+std::vector<double> MapReader::finiteNumbers(const std::string& key,
+                                             std::optional<std::size_t> length) {
+  const YAML::Node n = required(key);
+  if (!n.IsDefined()) return {};
+  return strictFiniteList(n, pathOf(key), length, ctx_);
+}
+
+std::vector<std::vector<double>> MapReader::finiteRows(const std::string& key,
+                                                       std::optional<std::size_t> row_length) {
+  const YAML::Node node = required(key);
+  std::vector<std::vector<double>> out;
+  if (!node.IsDefined()) return out;
+  if (!node.IsSequence()) {
+    ctx_.problem(lineOfNode(node), pathOf(key),
+                 std::string("expected a list of lists of numbers, got ") + typeName(node));
+    return out;
+  }
+  if (!row_length && node.size() > 0 && node[0].IsSequence()) row_length = node[0].size();
+  out.reserve(node.size());
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const std::string item = pathOf(key) + "[" + std::to_string(i) + "]";
+    ctx_.lines[item] = lineOfNode(node[i]);
+    out.push_back(strictFiniteList(node[i], item, row_length, ctx_));
+  }
+  return out;
+}
+
+std::vector<MapReader> MapReader::maps(const std::string& key) {
+  const YAML::Node node = required(key);
+  std::vector<MapReader> out;
+  if (!node.IsDefined()) return out;
+  if (!node.IsSequence()) {
+    ctx_.problem(lineOfNode(node), pathOf(key),
+                 std::string("expected a list of maps, got ") + typeName(node));
+    return out;
+  }
+  out.reserve(node.size());
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const std::string item = pathOf(key) + "[" + std::to_string(i) + "]";
+    const YAML::Node n = node[i];
+    ctx_.lines[item] = lineOfNode(n);
+    if (!n.IsMap()) {
+      ctx_.problem(lineOfNode(n), item, std::string("expected a map, got ") + typeName(n));
+    }
+    out.emplace_back(n.IsMap() ? n : YAML::Node(YAML::NodeType::Undefined), item, ctx_,
+                     lineOfNode(n));
+  }
+  return out;
+}
+
+std::vector<std::string> MapReader::texts(const std::string& key) {
+  const YAML::Node node = required(key);
+  std::vector<std::string> out;
+  if (!node.IsDefined()) return out;
+  if (!node.IsSequence()) {
+    ctx_.problem(lineOfNode(node), pathOf(key),
+                 std::string("expected a list of texts, got ") + typeName(node));
+    return out;
+  }
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const std::string item = pathOf(key) + "[" + std::to_string(i) + "]";
+    ctx_.lines[item] = lineOfNode(node[i]);
+    if (!node[i].IsScalar()) {
+      ctx_.problem(lineOfNode(node[i]), item, std::string("expected text, got ") + typeName(node[i]));
+    }
+    out.push_back(node[i].IsScalar() ? node[i].Scalar() : std::string());
+  }
+  return out;
+}
+
+std::map<std::string, std::string> MapReader::optionalTextMap(const std::string& key) {
+  std::map<std::string, std::string> out;
+  if (!has(key)) {
+    read_.insert(key);  // optional: absent is fine
+    return out;
+  }
+  const YAML::Node node = required(key);
+  if (!node.IsDefined()) return out;
+  if (!node.IsMap()) {
+    ctx_.problem(lineOfNode(node), pathOf(key),
+                 std::string("expected a map of text values, got ") + typeName(node));
+    return out;
+  }
+  for (const auto& kv : node) {
+    const std::string name = kv.first.IsScalar() ? kv.first.Scalar() : "?";
+    const std::string item = pathOf(key) + "." + name;
+    ctx_.lines[item] = lineOfNode(kv.first);
+    if (!kv.second.IsScalar()) {
+      ctx_.problem(lineOfNode(kv.first), item,
+                   std::string("expected text, got ") + typeName(kv.second));
+    } else {
+      out[name] = kv.second.Scalar();
+    }
+  }
+  return out;
+}
+
+bool MapReader::valueIs(const std::string& key, std::string_view word) const {
+  if (!valid_) return false;
+  for (const auto& kv : node_) {
+    if (kv.first.IsScalar() && kv.first.Scalar() == key) {
+      return kv.second.IsScalar() && kv.second.Scalar() == word;
+    }
+  }
+  return false;
 }
 
 void MapReader::problem(const std::string& key, const std::string& message) {

@@ -1,12 +1,15 @@
 #pragma once
-// Strict reading of YAML maps, shared by every file loader (vehicle files, scenario files):
+// Strict reading of YAML maps, shared by every file loader (vehicle, scenario and weight files):
 // every key read is recorded with its line, keys never read are reported as unknown, and type
 // errors name the key path. Problems accumulate so that one run reports everything wrong with a
 // file, not just the first thing. Include it only from loaders: it brings in yaml-cpp.
 
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include <yaml-cpp/yaml.h>
@@ -14,6 +17,10 @@
 #include "geaware/io/config_error.hpp"
 
 namespace geaware::io {
+
+/// Line of `key` in `lines` (key path → line), or of its nearest recorded parent
+/// ("a.b[2]" → "a.b" → "a"); 0 when none is recorded.
+[[nodiscard]] int lineOfKey(const std::map<std::string, int>& lines, std::string key);
 
 /// Shared state of one file's reading: its problems and the line of every key path seen.
 struct YamlContext {
@@ -24,7 +31,7 @@ struct YamlContext {
     problems.push_back({line, std::move(key), std::move(message)});
   }
   /// Line of `key`, or of its nearest recorded parent ("a.b[2]" → "a.b" → "a").
-  [[nodiscard]] int lineOf(std::string key) const;
+  [[nodiscard]] int lineOf(std::string key) const { return lineOfKey(lines, std::move(key)); }
 };
 
 /// Reads one YAML map. Missing required keys and wrong types become problems; the returned
@@ -50,6 +57,37 @@ class MapReader {
   [[nodiscard]] std::vector<std::vector<double>> rows(const std::string& key, std::size_t n);
   /// One of `choices`; anything else is a problem listing them.
   [[nodiscard]] std::string choice(const std::string& key, const std::vector<std::string>& choices);
+
+  // Strict reading (the weight file): numbers are parsed with std::from_chars, so "1.5x" is not a
+  // number ("expected a number, got '1.5x'") and .nan/inf are named ("'.nan' is not a finite
+  // number"). Item paths are "key[i]" (and "key[i][j]"); every item's line is recorded in
+  // ctx.lines so that later checks can name it.
+
+  /// A finite number; NaN after a problem.
+  [[nodiscard]] double finiteNumber(const std::string& key);
+  /// A list of finite numbers; with `length`, any other count is a problem "has N entries,
+  /// expected M" (the items are still read and returned).
+  [[nodiscard]] std::vector<double> finiteNumbers(const std::string& key,
+                                                  std::optional<std::size_t> length = std::nullopt);
+  /// A list of lists of finite numbers, each row checked as finiteNumbers with `row_length`
+  /// (none: the first row's length). Rows are returned as read, also when their length is wrong.
+  [[nodiscard]] std::vector<std::vector<double>> finiteRows(
+      const std::string& key, std::optional<std::size_t> row_length);
+  /// A list of maps, one reader per item (path "key[i]", missing keys reported at the item's
+  /// line). An item that is not a map is a problem and gives an invalid reader, so the indices
+  /// of the items after it are kept.
+  [[nodiscard]] std::vector<MapReader> maps(const std::string& key);
+  /// A list of texts.
+  [[nodiscard]] std::vector<std::string> texts(const std::string& key);
+  /// An optional map of free-form keys with text values (empty when absent).
+  [[nodiscard]] std::map<std::string, std::string> optionalTextMap(const std::string& key);
+  /// Whether `key`'s value is the scalar `word` (e.g. `none`). Like has(), it does not mark the
+  /// key as read: the caller reads it next, as text or as whatever else it may be.
+  [[nodiscard]] bool valueIs(const std::string& key, std::string_view word) const;
+  /// Whether this reader has a map to read (false for a missing or non-map value, whose keys
+  /// then read as placeholders without further problems).
+  [[nodiscard]] bool valid() const noexcept { return valid_; }
+
   /// Reports a problem at `key`'s line (for checks the reader cannot make itself).
   void problem(const std::string& key, const std::string& message);
   [[nodiscard]] const std::string& path() const noexcept { return path_; }

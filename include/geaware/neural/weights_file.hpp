@@ -2,21 +2,25 @@
 // The residual network's weight file: a versioned YAML document holding the architecture, the
 // input standardisation, γ, every layer, and free-form provenance (the training command, the
 // data set, the seed), so that a result can be reproduced from the file alone. The format is
-// described in docs/neural-lander.md. Loading is strict: a missing or unknown key, a wrong
-// dimension or a non-finite number is an io::ConfigError naming the file, line and key.
+// described in docs/neural-lander.md and lives in io/weights_file.hpp; this is the conversion
+// between it and NetworkWeights, with the network's own checks (this build's feature order,
+// hidden_widths describing the layers, NetworkWeights::validate). Loading is strict: a missing
+// or unknown key, a wrong dimension or a non-finite number is an io::ConfigError naming the
+// file, line and key.
 
 #include <filesystem>
 #include <map>
 #include <string>
 #include <string_view>
 
+#include "geaware/io/weights_file.hpp"
 #include "geaware/neural/residual_network.hpp"
 
 namespace geaware::neural {
 
 /// Format name and version written in every file; loading rejects any other.
-inline constexpr std::string_view kWeightsFormat = "geaware-residual-network";
-inline constexpr int kWeightsFormatVersion = 1;
+inline constexpr std::string_view kWeightsFormat = io::kWeightsFormat;
+inline constexpr int kWeightsFormatVersion = io::kWeightsFormatVersion;
 
 struct WeightsDocument {
   NetworkWeights weights;
