@@ -105,16 +105,19 @@ ControllerOutput Controller::fallback(std::uint32_t flags) const noexcept {
   return out;
 }
 
-ControllerOutput Controller::update(const ControllerInput& in) noexcept {
-  std::uint32_t flags = kFlagNone;
+namespace {
 
-  // 0. Guard the inputs: nothing non-finite may reach the motors.
+/// Nothing non-finite may reach the motors.
+bool finiteInputs(const ControllerInput& in) noexcept {
   const double q_norm = in.estimate.q_WB.norm();
-  if (!in.reference.allFinite() || !in.estimate.p_W.allFinite() || !in.estimate.v_W.allFinite() ||
-      !in.estimate.q_WB.coeffs().allFinite() || !(q_norm > 0.5) || !in.gyro_B.allFinite() ||
-      !in.accel_B.allFinite() || !in.rotor_speeds_rpm.allFinite()) {
-    return fallback(kFlagNonFiniteInput);
-  }
+  return in.reference.allFinite() && in.estimate.p_W.allFinite() && in.estimate.v_W.allFinite() &&
+         in.estimate.q_WB.coeffs().allFinite() && q_norm > 0.5 && in.gyro_B.allFinite() &&
+         in.accel_B.allFinite() && in.rotor_speeds_rpm.allFinite();
+}
+
+}  // namespace
+
+double Controller::modelHeight(const ControllerInput& in, std::uint32_t& flags) noexcept {
   // A height that is missing, non-finite or negative keeps the last valid one, and with it the
   // ground elevation under the vehicle, z_g = ẑ − h (the surface the ranger sees).
   if (in.height_valid && std::isfinite(in.height_m) && in.height_m >= 0.0) {
@@ -132,23 +135,18 @@ ControllerOutput Controller::update(const ControllerInput& in) noexcept {
   if (params_.ground_effect_height == GroundEffectHeight::kReference && have_ground_) {
     h = std::clamp(in.reference.p_W.z() - ground_z_m_, 0.0, kFarFromGroundM);
   }
+  return h;
+}
 
-  // 1. Reference from the flat map at that height.
-  const flatness::FlatState ref = reference_map_.evaluate(in.reference, h);
-  if (!ref.ok()) return fallback(flags | kFlagReferenceInvalid);
-
-  const Eigen::Quaterniond q_est = in.estimate.q_WB.normalized();
-  const Eigen::Matrix3d R = q_est.toRotationMatrix();
-  const Eigen::Vector3d z_B = R.col(2);
-
-  // Filters, advanced every tick so that they stay in step whatever the configuration.
-  const Eigen::Vector3d w_f = w_filter_.update(in.gyro_B);
-  const Eigen::Vector3d w_dot_f = have_last_w_ ? Eigen::Vector3d((w_f - last_w_f_) / dt_s_)
-                                               : Eigen::Vector3d::Zero();
-  last_w_f_ = w_f;
+Controller::Measured Controller::measure(const ControllerInput& in,
+                                         const Eigen::Matrix3d& R) noexcept {
+  Measured m;
+  m.w_f = w_filter_.update(in.gyro_B);
+  m.w_dot_f = have_last_w_ ? Eigen::Vector3d((m.w_f - last_w_f_) / dt_s_) : Eigen::Vector3d::Zero();
+  last_w_f_ = m.w_f;
   have_last_w_ = true;
-  const Eigen::Vector4d n_sq_meas = in.rotor_speeds_rpm.cwiseAbs2();
-  const Eigen::Vector4d wrench_meas = mixer_.wrench(n_sq_meas);
+  m.n_sq_rpm2 = in.rotor_speeds_rpm.cwiseAbs2();
+  const Eigen::Vector4d wrench_meas = mixer_.wrench(m.n_sq_rpm2);
   Eigen::Vector3d tau_meas = wrench_meas.tail<3>();
   if (params_.compensate_rotor_inertia && have_last_n_) {
     // Reaction torque of the accelerating rotors, J_R·ṅ (ṅ in rad/s²), with the mixer's spins.
@@ -157,15 +155,23 @@ ControllerOutput Controller::update(const ControllerInput& in) noexcept {
   }
   last_n_meas_rpm_ = in.rotor_speeds_rpm;
   have_last_n_ = true;
-  const Eigen::Vector3d tau_hat = tau_hat_filter_.update(tau_meas);
+  m.tau_hat = tau_hat_filter_.update(tau_meas);
   const Eigen::Vector3d a_meas_W = R * in.accel_B - Eigen::Vector3d(0.0, 0.0, kGravity);
-  const Eigen::Vector3d a_f = accel_filter_.update(a_meas_W);
-  const Eigen::Vector3d f_f = thrust_vector_filter_.update(wrench_meas(0) / mass_kg_ * z_B);
+  m.a_f = accel_filter_.update(a_meas_W);
+  m.f_f = thrust_vector_filter_.update(wrench_meas(0) / mass_kg_ * R.col(2));
+  return m;
+}
 
-  // 2. Acceleration command (paper eq. 31).
+Eigen::Vector3d Controller::thrustVectorCommand(const ControllerInput& in,
+                                                const flatness::FlatState& ref, double h,
+                                                const Measured& m, Eigen::Vector3d& a_des,
+                                                std::uint32_t& flags) const {
+  const Eigen::Quaterniond q_est = in.estimate.q_WB.normalized();
+  const Eigen::Matrix3d R = q_est.toRotationMatrix();
+  const Eigen::Vector3d z_B = R.col(2);
   const traj::FlatOutput& r = in.reference;
-  Eigen::Vector3d a_des = r.a_W + params_.k_p_per_s2.cwiseProduct(r.p_W - in.estimate.p_W) +
-                          params_.k_v_per_s.cwiseProduct(r.v_W - in.estimate.v_W);
+  a_des = r.a_W + params_.k_p_per_s2.cwiseProduct(r.p_W - in.estimate.p_W) +
+          params_.k_v_per_s.cwiseProduct(r.v_W - in.estimate.v_W);
   // Desired specific thrust vector: the acceleration the rotors must give.
   Eigen::Vector3d f_cmd = Eigen::Vector3d::Zero();
   switch (params_.acceleration) {
@@ -197,10 +203,9 @@ ControllerOutput Controller::update(const ControllerInput& in) noexcept {
     case AccelerationCompensation::kIndi:
       // Tal & Karaman 2020: increment the filtered thrust vector by the acceleration still
       // missing; everything the rotors' thrust does not explain (drag, ground) is measured.
-      f_cmd = f_f + (a_des - a_f);
+      f_cmd = m.f_f + (a_des - m.a_f);
       break;
   }
-
   // Tilt limit: keep the vertical component, shorten the horizontal one.
   if (f_cmd.z() < 1e-3) f_cmd.z() = 1e-3;
   const double horiz = f_cmd.head<2>().norm();
@@ -209,57 +214,83 @@ ControllerOutput Controller::update(const ControllerInput& in) noexcept {
     f_cmd.head<2>() *= max_horiz / horiz;
     flags |= kFlagTiltLimited;
   }
+  return f_cmd;
+}
+
+double Controller::allocatedYawTorque(const ControllerInput& in, double tau_z) noexcept {
+  // The rotors' yaw response to a steady-torque command is (1 + s·τ_R)/(1 + s·τ_motor): the
+  // J_R·ṅ lead. Lagging the command by 1/(1 + s·τ_R) (backward Euler) leaves the motor lag only.
+  if (!(params_.compensate_rotor_inertia && J_R_kgm2_ > 0.0)) return tau_z;
+  const double n_mean = std::max(in.rotor_speeds_rpm.mean(), throttle_curve_.minSpeedRpm());
+  const double tau_r = J_R_kgm2_ * model::kRpmToRadPerSec / (2.0 * k_I_Nm_per_rpm2_ * n_mean);
+  if (!have_yaw_lag_) {
+    yaw_torque_lagged_Nm_ = tau_z;
+    have_yaw_lag_ = true;
+  }
+  yaw_torque_lagged_Nm_ += dt_s_ / (tau_r + dt_s_) * (tau_z - yaw_torque_lagged_Nm_);
+  return yaw_torque_lagged_Nm_;
+}
+
+double Controller::thrustCorrection(const Eigen::Vector4d& n_sq_des,
+                                    const Eigen::Vector4d& n_sq_meas) noexcept {
+  // T_a^E = (Σk_T·n_des² − Σk_T·n²)/m (docs/paper-facts.md).
+  const double thrust_acc_error = k_T_N_per_rpm2_ * (n_sq_des.sum() - n_sq_meas.sum()) / mass_kg_;
+  const double i_limit = params_.thrust_pi_ki > 0.0 ? params_.thrust_pi_limit / params_.thrust_pi_ki : 0.0;
+  thrust_pi_integral_ = std::clamp(thrust_pi_integral_ + thrust_acc_error * dt_s_, -i_limit, i_limit);
+  return std::clamp(params_.thrust_pi_kp * thrust_acc_error +
+                        params_.thrust_pi_ki * thrust_pi_integral_,
+                    -params_.thrust_pi_limit, params_.thrust_pi_limit);
+}
+
+ControllerOutput Controller::update(const ControllerInput& in) noexcept {
+  // 0. Guard the inputs; the height the models are evaluated at.
+  if (!finiteInputs(in)) return fallback(kFlagNonFiniteInput);
+  std::uint32_t flags = kFlagNone;
+  const double h = modelHeight(in, flags);
+
+  // 1. Reference from the flat map at that height; the filtered measurements.
+  const flatness::FlatState ref = reference_map_.evaluate(in.reference, h);
+  if (!ref.ok()) return fallback(flags | kFlagReferenceInvalid);
+  const Eigen::Quaterniond q_est = in.estimate.q_WB.normalized();
+  const Eigen::Matrix3d R = q_est.toRotationMatrix();
+  const Measured m = measure(in, R);
+
+  // 2. Acceleration command (paper eq. 31) and the specific thrust vector.
+  Eigen::Vector3d a_des;
+  const Eigen::Vector3d f_cmd = thrustVectorCommand(in, ref, h, m, a_des, flags);
 
   // 3. Attitude, body-rate and body-acceleration commands (paper eq. 32).
   const Eigen::Vector3d z_des = f_cmd.normalized();
-  const Eigen::Quaterniond q_des(attitudeFrom(z_des, r.yaw_rad));
+  const Eigen::Quaterniond q_des(attitudeFrom(z_des, in.reference.yaw_rad));
   // Attitude error ξ_e = ξ̂⁻¹∘ξ_des as an angle vector (paper eq. 32), the short way round.
   const Eigen::Vector3d xi_e = model::logMap(q_est.conjugate() * q_des);
   const Eigen::Vector3d w_des = params_.k_xi_per_s.cwiseProduct(xi_e) + ref.w_B;
-  const Eigen::Vector3d w_dot_des = params_.k_w_per_s.cwiseProduct(w_des - w_f) + ref.w_dot_B;
+  const Eigen::Vector3d w_dot_des = params_.k_w_per_s.cwiseProduct(w_des - m.w_f) + ref.w_dot_B;
 
   // 4. Thrust and torque (paper eq. 33, 34).
-  const double thrust = std::max(mass_kg_ * f_cmd.dot(z_B), 0.0);
+  const double thrust = std::max(mass_kg_ * f_cmd.dot(R.col(2)), 0.0);
   const Eigen::Vector3d J = usesJPrime(params_.torque) ? ground_effect_.levelingInertiaDiagonal(h)
                                                        : inertia_kgm2_;
   Eigen::Vector3d tau;
   if (usesIncrementalTorque(params_.torque)) {
-    tau = tau_hat + J.cwiseProduct(w_dot_des - w_dot_f);
+    tau = m.tau_hat + J.cwiseProduct(w_dot_des - m.w_dot_f);
   } else {
     tau = J.cwiseProduct(w_dot_des) + w_des.cross(J.cwiseProduct(w_des));
   }
 
-  // 5. Rotor speeds and throttles: inverse throttle curve plus the shared PI correction on the
-  //    thrust-acceleration error T_a^E = (Σk_T·n_des² − Σk_T·n²)/m (docs/paper-facts.md).
-  // The rotors' yaw response to a steady-torque command is (1 + s·τ_R)/(1 + s·τ_motor): the
-  // J_R·ṅ lead. Lagging the command by 1/(1 + s·τ_R) (backward Euler) leaves the motor lag only.
+  // 5. Rotor speeds and throttles: inverse throttle curve plus the shared PI correction.
   Eigen::Vector3d tau_alloc = tau;
-  if (params_.compensate_rotor_inertia && J_R_kgm2_ > 0.0) {
-    const double n_mean = std::max(in.rotor_speeds_rpm.mean(), throttle_curve_.minSpeedRpm());
-    const double tau_r = J_R_kgm2_ * model::kRpmToRadPerSec / (2.0 * k_I_Nm_per_rpm2_ * n_mean);
-    if (!have_yaw_lag_) {
-      yaw_torque_lagged_Nm_ = tau.z();
-      have_yaw_lag_ = true;
-    }
-    yaw_torque_lagged_Nm_ += dt_s_ / (tau_r + dt_s_) * (tau.z() - yaw_torque_lagged_Nm_);
-    tau_alloc.z() = yaw_torque_lagged_Nm_;
-  }
+  tau_alloc.z() = allocatedYawTorque(in, tau.z());
   const RotorAllocation alloc =
       allocateRotorSpeeds(mixer_.inverse(), thrust, tau_alloc, throttle_curve_.minSpeedRpm(),
                           throttle_curve_.maxSpeedRpm());
   if (alloc.thrust_saturated) flags |= kFlagThrustSaturated;
   if (alloc.roll_pitch_saturated) flags |= kFlagRollPitchSaturated;
   if (alloc.yaw_saturated) flags |= kFlagYawSaturated;
-  const Eigen::Vector4d& n_sq_des = alloc.n_sq_rpm2;
-  const double thrust_acc_error = k_T_N_per_rpm2_ * (n_sq_des.sum() - n_sq_meas.sum()) / mass_kg_;
-  const double i_limit = params_.thrust_pi_ki > 0.0 ? params_.thrust_pi_limit / params_.thrust_pi_ki : 0.0;
-  thrust_pi_integral_ = std::clamp(thrust_pi_integral_ + thrust_acc_error * dt_s_, -i_limit, i_limit);
-  const double t_e = std::clamp(params_.thrust_pi_kp * thrust_acc_error +
-                                    params_.thrust_pi_ki * thrust_pi_integral_,
-                                -params_.thrust_pi_limit, params_.thrust_pi_limit);
+  const double t_e = thrustCorrection(alloc.n_sq_rpm2, m.n_sq_rpm2);
 
   ControllerOutput out;
-  out.n_des_rpm = n_sq_des.cwiseSqrt();
+  out.n_des_rpm = alloc.n_sq_rpm2.cwiseSqrt();
   for (int i = 0; i < 4; ++i) {
     out.throttle[static_cast<std::size_t>(i)] = std::clamp(throttle_curve_.throttle(out.n_des_rpm(i)) + t_e, 0.0, 1.0);
   }
@@ -271,7 +302,7 @@ ControllerOutput Controller::update(const ControllerInput& in) noexcept {
   out.w_dot_des_B = w_dot_des;
   out.tau_des_B = tau;
   out.yaw_torque_allocated_Nm = tau_alloc.z();
-  out.tau_hat_B = tau_hat;
+  out.tau_hat_B = m.tau_hat;
   out.height_used_m = h;
   out.flags = flags;
   return out;

@@ -102,6 +102,31 @@ class Controller {
   /// whose inputs cannot be trusted.
   [[nodiscard]] ControllerOutput fallback(std::uint32_t flags) const noexcept;
 
+  /// The filtered measurements of one tick (update(), step 1).
+  struct Measured {
+    Eigen::Vector3d w_f;        ///< filtered body rate [rad/s]
+    Eigen::Vector3d w_dot_f;    ///< its difference quotient [rad/s²]
+    Eigen::Vector4d n_sq_rpm2;  ///< measured rotor speeds squared [rpm²]
+    Eigen::Vector3d tau_hat;    ///< filtered torque from the measured speeds [N·m]
+    Eigen::Vector3d a_f;        ///< filtered measured acceleration, world frame [m/s²]
+    Eigen::Vector3d f_f;        ///< filtered specific thrust vector from the speeds [m/s²]
+  };
+  /// The height the models are evaluated at; updates the last valid height and the ground.
+  [[nodiscard]] double modelHeight(const ControllerInput& in, std::uint32_t& flags) noexcept;
+  /// Advances every filter by one tick (they stay in step whatever the configuration).
+  [[nodiscard]] Measured measure(const ControllerInput& in, const Eigen::Matrix3d& R) noexcept;
+  /// The desired specific thrust vector f_cmd (paper eq. 31 with the configured compensation);
+  /// `a_des` gets the acceleration command. Tilt-limited, flagged in `flags`.
+  [[nodiscard]] Eigen::Vector3d thrustVectorCommand(const ControllerInput& in,
+                                                    const flatness::FlatState& ref, double h,
+                                                    const Measured& m, Eigen::Vector3d& a_des,
+                                                    std::uint32_t& flags) const;
+  /// The yaw torque to allocate: `tau_z` lagged against the rotors' J_R·ṅ lead.
+  [[nodiscard]] double allocatedYawTorque(const ControllerInput& in, double tau_z) noexcept;
+  /// The shared throttle PI correction T_E on the thrust-acceleration error.
+  [[nodiscard]] double thrustCorrection(const Eigen::Vector4d& n_sq_des,
+                                        const Eigen::Vector4d& n_sq_meas) noexcept;
+
   ControllerParams params_;
   std::shared_ptr<const ResidualForceModel> residual_;
   double mass_kg_;
