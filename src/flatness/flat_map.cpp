@@ -34,6 +34,106 @@ FlatMap::FlatMap(const model::VehicleModel& model, GroundEffectTerms terms)
       n_sq_min_rpm2_(model.throttleCurve().minSpeedRpm() * model.throttleCurve().minSpeedRpm()),
       n_sq_max_rpm2_(model.throttleCurve().maxSpeedRpm() * model.throttleCurve().maxSpeedRpm()) {}
 
+namespace {
+
+/// The body axes of the reference (Faessler et al. 2018, eq. 14–16): body x ⊥ α and ⊥ y_C,
+/// body y ⊥ β. kOk with the axes in `R`, or why there are none.
+FlatMapStatus bodyAxes(const Eigen::Vector3d& alpha, const Eigen::Vector3d& beta,
+                       const Eigen::Vector3d& y_C, Eigen::Matrix3d& R) noexcept {
+  if (alpha.norm() < kMinCollectiveAcc) return FlatMapStatus::kNoThrust;  // free fall
+  Eigen::Vector3d x_B = y_C.cross(alpha);
+  const double x_norm = x_B.norm();
+  if (x_norm < kMinNorm) return FlatMapStatus::kYawSingular;
+  x_B /= x_norm;
+  Eigen::Vector3d y_B = beta.cross(x_B);
+  const double y_norm = y_B.norm();
+  if (y_norm < kMinNorm) return FlatMapStatus::kNoThrust;
+  y_B /= y_norm;
+  R.col(0) = x_B;
+  R.col(1) = y_B;
+  R.col(2) = x_B.cross(y_B);
+  return FlatMapStatus::kOk;
+}
+
+/// The body-rate system A·ω = b (docs/flatness.md): projecting the derivative of the model onto
+/// x_B, y_B and differentiating the yaw constraint y_Cᵀx_B = 0 gives
+///   [ 0    B1  −C1 ] ω = [ x_Bᵀj + dx·x_Bᵀa      ]
+///   [ B2   0    C2 ]     [ −(y_Bᵀj + dy·y_Bᵀa)   ]
+///   [ 0   −f    e  ]     [ ψ̇·x_Cᵀx_B             ]
+struct RateSystem {
+  double xv, yv, zv, ddiff, B1, C1, B2, C2, e, f, den_y;
+
+  RateSystem(const Eigen::Matrix3d& R, const Eigen::Vector3d& y_C, const Eigen::Vector3d& v,
+             double c, double dx, double dy) noexcept
+      : xv(R.col(0).dot(v)),
+        yv(R.col(1).dot(v)),
+        zv(R.col(2).dot(v)),
+        ddiff(dx - dy),
+        B1(c + dx * zv),
+        C1(ddiff * yv),
+        B2(c + dy * zv),
+        C2(ddiff * xv),
+        e(y_C.dot(R.col(1))),
+        f(y_C.dot(R.col(2))),
+        den_y(e * B1 - C1 * f) {}
+
+  /// kOk, or why A is singular.
+  [[nodiscard]] FlatMapStatus status() const noexcept {
+    if (std::abs(den_y) < kMinNorm || std::abs(e) < kMinNorm || std::abs(B2) < kMinNorm) {
+      return std::abs(e) < kMinNorm ? FlatMapStatus::kYawSingular : FlatMapStatus::kNoThrust;
+    }
+    return FlatMapStatus::kOk;
+  }
+  /// Elimination for the fixed sparsity of A: row 3 gives ω_z(ω_y), row 1 ω_y, row 2 ω_x.
+  [[nodiscard]] Eigen::Vector3d solve(const Eigen::Vector3d& r) const noexcept {
+    const double wy = (e * r.x() + C1 * r.z()) / den_y;
+    const double wz = (r.z() + f * wy) / e;
+    const double wx = (r.y() - C2 * wz) / B2;
+    return Eigen::Vector3d(wx, wy, wz);
+  }
+};
+
+/// Angular acceleration: A·ω = b differentiated once more, A·ω̇ = ḃ − Ȧ·ω, with
+/// ẋ_B = ω_z·y_B − ω_y·z_B, ẏ_B = −ω_z·x_B + ω_x·z_B, ż_B = ω_y·x_B − ω_x·y_B,
+/// ẋ_C = ψ̇·y_C, ẏ_C = −ψ̇·x_C, and ċ = z_Bᵀj − dx·(x_Bᵀv)·ω_y + dy·(y_Bᵀv)·ω_x.
+Eigen::Vector3d angularAcceleration(const traj::FlatOutput& ref, const Eigen::Matrix3d& R,
+                                    const Eigen::Vector3d& x_C, const Eigen::Vector3d& y_C,
+                                    const RateSystem& A, const Eigen::Vector3d& w, double dx,
+                                    double dy) noexcept {
+  const Eigen::Vector3d& v = ref.v_W;
+  const Eigen::Vector3d& a = ref.a_W;
+  const Eigen::Vector3d& j = ref.j_W;
+  const Eigen::Vector3d& s = ref.s_W;
+  const Eigen::Vector3d x_B = R.col(0);
+  const Eigen::Vector3d y_B = R.col(1);
+  const Eigen::Vector3d z_B = R.col(2);
+  const double xa = x_B.dot(a);
+  const double ya = y_B.dot(a);
+  const Eigen::Vector3d xd_B = w.z() * y_B - w.y() * z_B;
+  const Eigen::Vector3d yd_B = -w.z() * x_B + w.x() * z_B;
+  const Eigen::Vector3d zd_B = w.y() * x_B - w.x() * y_B;
+  const double psid = ref.yaw_rate_radps;
+  const Eigen::Vector3d xd_C = psid * y_C;
+  const Eigen::Vector3d yd_C = -psid * x_C;
+  const double c_dot = z_B.dot(j) - dx * A.xv * w.y() + dy * A.yv * w.x();
+  const double zv_dot = zd_B.dot(v) + z_B.dot(a);
+  const double B1_dot = c_dot + dx * zv_dot;
+  const double B2_dot = c_dot + dy * zv_dot;
+  const double C1_dot = A.ddiff * (yd_B.dot(v) + ya);
+  const double C2_dot = A.ddiff * (xd_B.dot(v) + xa);
+  const double e_dot = yd_C.dot(y_B) + y_C.dot(yd_B);
+  const double f_dot = yd_C.dot(z_B) + y_C.dot(zd_B);
+  const Eigen::Vector3d b_dot(
+      xd_B.dot(j) + x_B.dot(s) + dx * (xd_B.dot(a) + x_B.dot(j)),
+      -(yd_B.dot(j) + y_B.dot(s) + dy * (yd_B.dot(a) + y_B.dot(j))),
+      ref.yaw_acc_radps2 * x_C.dot(x_B) + psid * (xd_C.dot(x_B) + x_C.dot(xd_B)));
+  const Eigen::Vector3d A_dot_w(B1_dot * w.y() - C1_dot * w.z(), B2_dot * w.x() + C2_dot * w.z(),
+                                -f_dot * w.y() + e_dot * w.z());
+  return A.solve(b_dot - A_dot_w);
+}
+
+}  // namespace
+
 FlatState FlatMap::evaluate(const traj::FlatOutput& ref, double height_m) const noexcept {
   FlatState out;
   if (!ref.allFinite() || !std::isfinite(height_m)) {
@@ -42,8 +142,6 @@ FlatState FlatMap::evaluate(const traj::FlatOutput& ref, double height_m) const 
   }
   const Eigen::Vector3d& v = ref.v_W;
   const Eigen::Vector3d& a = ref.a_W;
-  const Eigen::Vector3d& j = ref.j_W;
-  const Eigen::Vector3d& s = ref.s_W;
 
   // Mass-normalised drag coefficients at this height (or the high-altitude ones).
   const Eigen::Vector2d d = (terms_.height_drag ? drag_.coefficients(height_m)
@@ -51,36 +149,17 @@ FlatState FlatMap::evaluate(const traj::FlatOutput& ref, double height_m) const 
   const double dx = d.x();
   const double dy = d.y();
 
-  // 1. Attitude (Faessler et al. 2018, eq. 14–16): body x ⊥ α and ⊥ y_C, body y ⊥ β.
+  // 1. Attitude.
   const double cpsi = std::cos(ref.yaw_rad);
   const double spsi = std::sin(ref.yaw_rad);
   const Eigen::Vector3d x_C(cpsi, spsi, 0.0);
   const Eigen::Vector3d y_C(-spsi, cpsi, 0.0);
   const Eigen::Vector3d acc_g = a + Eigen::Vector3d(0.0, 0.0, model::kGravity);
-  const Eigen::Vector3d alpha = acc_g + dx * v;
-  const Eigen::Vector3d beta = acc_g + dy * v;
-  if (alpha.norm() < kMinCollectiveAcc) {  // free fall: no thrust direction at all
-    out.status = FlatMapStatus::kNoThrust;
-    return out;
-  }
-  Eigen::Vector3d x_B = y_C.cross(alpha);
-  const double x_norm = x_B.norm();
-  if (x_norm < kMinNorm) {
-    out.status = FlatMapStatus::kYawSingular;
-    return out;
-  }
-  x_B /= x_norm;
-  Eigen::Vector3d y_B = beta.cross(x_B);
-  const double y_norm = y_B.norm();
-  if (y_norm < kMinNorm) {
-    out.status = FlatMapStatus::kNoThrust;
-    return out;
-  }
-  y_B /= y_norm;
-  const Eigen::Vector3d z_B = x_B.cross(y_B);
-  out.R_WB.col(0) = x_B;
-  out.R_WB.col(1) = y_B;
-  out.R_WB.col(2) = z_B;
+  out.status = bodyAxes(acc_g + dx * v, acc_g + dy * v, y_C, out.R_WB);
+  if (out.status != FlatMapStatus::kOk) return out;
+  const Eigen::Vector3d x_B = out.R_WB.col(0);
+  const Eigen::Vector3d y_B = out.R_WB.col(1);
+  const Eigen::Vector3d z_B = out.R_WB.col(2);
 
   // 2. Collective acceleration c = (1 + F_G)·T/m = z_Bᵀ(a + g·z_W) (the drag terms are ⊥ z_B),
   //    and the thrust (paper eq. 29).
@@ -93,63 +172,17 @@ FlatState FlatMap::evaluate(const traj::FlatOutput& ref, double height_m) const 
   out.collective_acc_mps2 = c;
   out.thrust_N = mass_kg_ * c / ge_gain;
 
-  // 3. Body rates. Projecting the derivative of the model onto x_B, y_B and differentiating the
-  //    yaw constraint y_Cᵀx_B = 0 gives a linear system A·ω = b (docs/flatness.md):
-  //      [ 0    B1  −C1 ] ω = [ x_Bᵀj + dx·x_Bᵀa      ]
-  //      [ B2   0    C2 ]     [ −(y_Bᵀj + dy·y_Bᵀa)   ]
-  //      [ 0   −f    e  ]     [ ψ̇·x_Cᵀx_B             ]
-  const double xv = x_B.dot(v);
-  const double yv = y_B.dot(v);
-  const double zv = z_B.dot(v);
-  const double ddiff = dx - dy;
-  const double B1 = c + dx * zv;
-  const double C1 = ddiff * yv;
-  const double B2 = c + dy * zv;
-  const double C2 = ddiff * xv;
-  const double e = y_C.dot(y_B);
-  const double f = y_C.dot(z_B);
-  const double den_y = e * B1 - C1 * f;
-  if (std::abs(den_y) < kMinNorm || std::abs(e) < kMinNorm || std::abs(B2) < kMinNorm) {
-    out.status = std::abs(e) < kMinNorm ? FlatMapStatus::kYawSingular : FlatMapStatus::kNoThrust;
-    return out;
-  }
-  // Elimination for the fixed sparsity of A: row 3 gives ω_z(ω_y), row 1 ω_y, row 2 ω_x.
-  const auto solve = [&](const Eigen::Vector3d& r) {
-    const double wy = (e * r.x() + C1 * r.z()) / den_y;
-    const double wz = (r.z() + f * wy) / e;
-    const double wx = (r.y() - C2 * wz) / B2;
-    return Eigen::Vector3d(wx, wy, wz);
-  };
-  const double xa = x_B.dot(a);
-  const double ya = y_B.dot(a);
-  const Eigen::Vector3d b(x_B.dot(j) + dx * xa, -(y_B.dot(j) + dy * ya), ref.yaw_rate_radps * x_C.dot(x_B));
-  const Eigen::Vector3d w = solve(b);
+  // 3. Body rates from A·ω = b.
+  const RateSystem A(out.R_WB, y_C, v, c, dx, dy);
+  out.status = A.status();
+  if (out.status != FlatMapStatus::kOk) return out;
+  const Eigen::Vector3d b(x_B.dot(ref.j_W) + dx * x_B.dot(a), -(y_B.dot(ref.j_W) + dy * y_B.dot(a)),
+                          ref.yaw_rate_radps * x_C.dot(x_B));
+  const Eigen::Vector3d w = A.solve(b);
   out.w_B = w;
 
-  // 4. Angular acceleration: differentiate A·ω = b once more, A·ω̇ = ḃ − Ȧ·ω, with
-  //    ẋ_B = ω_z·y_B − ω_y·z_B, ẏ_B = −ω_z·x_B + ω_x·z_B, ż_B = ω_y·x_B − ω_x·y_B,
-  //    ẋ_C = ψ̇·y_C, ẏ_C = −ψ̇·x_C, and ċ = z_Bᵀj − dx·(x_Bᵀv)·ω_y + dy·(y_Bᵀv)·ω_x.
-  const Eigen::Vector3d xd_B = w.z() * y_B - w.y() * z_B;
-  const Eigen::Vector3d yd_B = -w.z() * x_B + w.x() * z_B;
-  const Eigen::Vector3d zd_B = w.y() * x_B - w.x() * y_B;
-  const double psid = ref.yaw_rate_radps;
-  const Eigen::Vector3d xd_C = psid * y_C;
-  const Eigen::Vector3d yd_C = -psid * x_C;
-  const double c_dot = z_B.dot(j) - dx * xv * w.y() + dy * yv * w.x();
-  const double zv_dot = zd_B.dot(v) + z_B.dot(a);
-  const double B1_dot = c_dot + dx * zv_dot;
-  const double B2_dot = c_dot + dy * zv_dot;
-  const double C1_dot = ddiff * (yd_B.dot(v) + ya);
-  const double C2_dot = ddiff * (xd_B.dot(v) + xa);
-  const double e_dot = yd_C.dot(y_B) + y_C.dot(yd_B);
-  const double f_dot = yd_C.dot(z_B) + y_C.dot(zd_B);
-  const Eigen::Vector3d b_dot(
-      xd_B.dot(j) + x_B.dot(s) + dx * (xd_B.dot(a) + x_B.dot(j)),
-      -(yd_B.dot(j) + y_B.dot(s) + dy * (yd_B.dot(a) + y_B.dot(j))),
-      ref.yaw_acc_radps2 * x_C.dot(x_B) + psid * (xd_C.dot(x_B) + x_C.dot(xd_B)));
-  const Eigen::Vector3d A_dot_w(B1_dot * w.y() - C1_dot * w.z(), B2_dot * w.x() + C2_dot * w.z(),
-                                -f_dot * w.y() + e_dot * w.z());
-  out.w_dot_B = solve(b_dot - A_dot_w);
+  // 4. Angular acceleration.
+  out.w_dot_B = angularAcceleration(ref, out.R_WB, x_C, y_C, A, w, dx, dy);
 
   // 5. Torque with the leveling torque as an inertia change (paper eq. 30) and rotor speeds
   //    through the inverse mixer (paper eq. 2).

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
@@ -38,9 +40,11 @@ inline ::testing::AssertionResult withinSigmas(const Estimate& e, double truth, 
                                        << " vs truth " << truth << ": z = " << z;
 }
 
-/// A fresh, empty directory for one test's files.
+/// A fresh, empty directory for one test's files (the process id keeps two test runs at the
+/// same time, e.g. from two build trees, apart).
 inline std::filesystem::path tempDir(const std::string& name) {
-  const auto dir = std::filesystem::path(::testing::TempDir()) / ("geaware_ident_" + name);
+  const auto dir = std::filesystem::path(::testing::TempDir()) /
+                   ("geaware_ident_" + name + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
