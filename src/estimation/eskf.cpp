@@ -347,19 +347,43 @@ EskfStatus Eskf::addMocap(const model::MocapSample& mocap) noexcept {
   return fuseNow(m);
 }
 
+void Eskf::reinflate(Cov& P) const noexcept {
+  const Cov P0 = initialCovariance();
+  for (int blk : {kP, kV, kTh}) {
+    P.middleRows<3>(blk).setZero();
+    P.middleCols<3>(blk).setZero();
+    P.block<3, 3>(blk, blk) = P0.block<3, 3>(blk, blk);
+  }
+}
+
+void Eskf::repropagate(int k, const EskfState& x, const Cov& P, const Vec3& w_s, const Vec3& a_s,
+                       double dt1, double t_s) noexcept {
+  int j = k;
+  if (dt1 > 0.0 && k > 0) {
+    Entry& next = at(k - 1);
+    next.x = x;
+    next.P = P;
+    propagate(next.x, next.P, w_s, a_s, next.gyro_B, next.accel_B, next.t_s - t_s);
+    j = k - 1;
+  } else {
+    Entry& e = at(k);
+    e.x = x;
+    e.P = P;
+  }
+  for (; j > 0; --j) {
+    const Entry& from = at(j);
+    Entry& to = at(j - 1);
+    to.x = from.x;
+    to.P = from.P;
+    propagate(to.x, to.P, from.has_imu ? from.gyro_B : to.gyro_B,
+              from.has_imu ? from.accel_B : to.accel_B, to.gyro_B, to.accel_B, to.t_s - from.t_s);
+  }
+}
+
 EskfStatus Eskf::fuseNow(const model::MocapSample& m) noexcept {
   last_fused_t_s_ = m.t_s;
   const bool recover = params_.max_consecutive_rejections > 0 &&
                        consecutive_rejections_ >= params_.max_consecutive_rejections;
-  const auto reinflate = [this](Cov& P) {
-    // Forget what the filter believed about p, v and θ (and their correlations).
-    const Cov P0 = initialCovariance();
-    for (int blk : {kP, kV, kTh}) {
-      P.middleRows<3>(blk).setZero();
-      P.middleCols<3>(blk).setZero();
-      P.block<3, 3>(blk, blk) = P0.block<3, 3>(blk, blk);
-    }
-  };
   const auto rejected = [this]() {
     ++counters_.mocap_gate_rejected;
     ++consecutive_rejections_;
@@ -408,27 +432,8 @@ EskfStatus Eskf::fuseNow(const model::MocapSample& m) noexcept {
   if (recover) reinflate(P);
   if (!update(x, P, m, !recover)) return rejected();
 
-  // 4. Re-propagate the stored IMU samples from t_s to now, overwriting the buffered states.
-  int j = k;
-  if (dt1 > 0.0 && k > 0) {
-    Entry& next = at(k - 1);
-    next.x = x;
-    next.P = P;
-    propagate(next.x, next.P, w_s, a_s, next.gyro_B, next.accel_B, next.t_s - m.t_s);
-    j = k - 1;
-  } else {
-    Entry& e = at(k);
-    e.x = x;
-    e.P = P;
-  }
-  for (; j > 0; --j) {
-    const Entry& from = at(j);
-    Entry& to = at(j - 1);
-    to.x = from.x;
-    to.P = from.P;
-    propagate(to.x, to.P, from.has_imu ? from.gyro_B : to.gyro_B,
-              from.has_imu ? from.accel_B : to.accel_B, to.gyro_B, to.accel_B, to.t_s - from.t_s);
-  }
+  // 4. Re-propagate the stored IMU samples from t_s to now.
+  repropagate(k, x, P, w_s, a_s, dt1, m.t_s);
   return accepted();
 }
 

@@ -66,7 +66,8 @@ S curveColumn(std::string_view curve, std::string_view table, std::string_view k
   return s;
 }
 
-std::vector<S> specs() {
+/// Name, mass, inertia, geometry, rotor and throttle curve.
+std::vector<S> bodySpecs() {
   S name;
   name.key = "name";
   name.kind = ParamKind::kText;
@@ -76,18 +77,7 @@ std::vector<S> specs() {
                 [](P& p) -> double& { return p.throttle.c0_rpm2; });
   c0.note = "(n² at zero throttle)";
 
-  constexpr std::string_view kThrust = "ground_effect.additional_thrust";
-  constexpr std::string_view kThrustTable = "ground_effect.additional_thrust.table";
-  constexpr std::string_view kLeveling = "ground_effect.leveling_torque";
-  constexpr std::string_view kLevelingTable = "ground_effect.leveling_torque.table";
-  // F_G > −1 keeps the thrust positive; 10 is ten times the strongest cushion on record.
-  S F_G = curveColumn(kThrust, kThrustTable, "ground_effect.additional_thrust.table.F_G", "",
-                      {-1.0, 10.0, kExclusive}, [](P& p) -> std::vector<double>& {
-                        return p.additional_thrust.table.values;
-                      });
-  F_G.note = "(dimensionless)";
-
-  std::vector<S> s = {
+  return {
       name,
       number("mass_kg", "kg", kMass, [](P& p) -> double& { return p.mass_kg; }),
       number("inertia_kgm2.xx", "kg·m²", kInertia, [](P& p) -> double& { return p.inertia_kgm2[0]; }),
@@ -114,6 +104,23 @@ std::vector<S> specs() {
       fitted("throttle_curve.c1_rpm2", "rpm²", kCurveCoefficient,
              [](P& p) -> double& { return p.throttle.c1_rpm2; }),
       c0,
+  };
+}
+
+/// The ground-effect curves, each as a formula or a table.
+std::vector<S> groundEffectSpecs() {
+  constexpr std::string_view kThrust = "ground_effect.additional_thrust";
+  constexpr std::string_view kThrustTable = "ground_effect.additional_thrust.table";
+  constexpr std::string_view kLeveling = "ground_effect.leveling_torque";
+  constexpr std::string_view kLevelingTable = "ground_effect.leveling_torque.table";
+  // F_G > −1 keeps the thrust positive; 10 is ten times the strongest cushion on record.
+  S F_G = curveColumn(kThrust, kThrustTable, "ground_effect.additional_thrust.table.F_G", "",
+                      {-1.0, 10.0, kExclusive}, [](P& p) -> std::vector<double>& {
+                        return p.additional_thrust.table.values;
+                      });
+  F_G.note = "(dimensionless)";
+
+  return {
       formula(kThrust, "ground_effect.additional_thrust.g1_m2", "m²", {0.0, 100.0, kExclusive},
               [](P& p) -> double& { return p.additional_thrust.g1_m2; }),
       formula(kThrust, "ground_effect.additional_thrust.g2_m2", "m²", {0.0, 100.0, kInclusive},
@@ -138,6 +145,12 @@ std::vector<S> specs() {
       curveColumn(kLeveling, kLevelingTable, "ground_effect.leveling_torque.table.M_G_m", "m",
                   {-1.0, 1.0, kInclusive},
                   [](P& p) -> std::vector<double>& { return p.leveling_torque.table.values; }),
+  };
+}
+
+/// The drag table (identified from flights).
+std::vector<S> dragSpecs() {
+  std::vector<S> s = {
       column("drag", "drag.heights_m", "m", {0.0, 1000.0, kInclusive},
              [](P& p) -> std::vector<double>& { return p.drag.heights_m; }),
       column("drag", "drag.d_x_N_per_mps", "N/(m/s)", {0.0, 100.0, kInclusive},
@@ -145,8 +158,14 @@ std::vector<S> specs() {
       column("drag", "drag.d_y_N_per_mps", "N/(m/s)", {0.0, 100.0, kInclusive},
              [](P& p) -> std::vector<double>& { return p.drag.d_y_N_per_mps; }),
   };
-  for (auto& spec : s) {
-    if (spec.table == "drag") spec.fitted = true;
+  for (auto& spec : s) spec.fitted = true;
+  return s;
+}
+
+std::vector<S> specs() {
+  std::vector<S> s = bodySpecs();
+  for (auto* part : {&groundEffectSpecs, &dragSpecs}) {
+    for (auto& spec : part()) s.push_back(std::move(spec));
   }
   return s;
 }

@@ -169,6 +169,12 @@ class Eskf {
   bool update(EskfState& x, Cov& P, const model::MocapSample& m, bool gated) noexcept;
   EskfStatus fuseNow(const model::MocapSample& m) noexcept;
   [[nodiscard]] Cov initialCovariance() const noexcept;
+  /// Forgets what the filter believed about p, v and θ (and their correlations).
+  void reinflate(Cov& P) const noexcept;
+  /// After an update at entry k's capture time t_s (state x, P; IMU w_s, a_s there, dt1 after
+  /// entry k): re-propagates the stored IMU samples from t_s to now, overwriting the buffer.
+  void repropagate(int k, const EskfState& x, const Cov& P, const Eigen::Vector3d& w_s,
+                   const Eigen::Vector3d& a_s, double dt1, double t_s) noexcept;
   [[nodiscard]] Entry& at(int age) noexcept;  ///< age 0: newest
   [[nodiscard]] const Entry& at(int age) const noexcept;
   void push(const Entry& e) noexcept;
