@@ -2,6 +2,7 @@
 // '#'-comment header, read into a model::HeightGrid that sim::HeightMap is built from.
 #include "geaware/io/height_map_file.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -9,6 +10,8 @@
 #include <string_view>
 #include <system_error>
 #include <utility>
+
+#include "geaware/io/format_version.hpp"
 
 namespace geaware::io {
 
@@ -38,8 +41,29 @@ std::optional<double> parseNumber(std::string_view s) {
   return v;
 }
 
-}  // namespace
+/// "# format_version: N": absent means 1; a version this geaware does not read is an error
+/// (the keys may mean something else in it), as is the key after the data or twice.
+void checkFormatVersion(const std::string& path, int line, std::string_view value,
+                        int first_data_line, int& version_line) {
+  const std::string key = std::string("header key '") + kFormatVersionKey + "'";
+  if (first_data_line > 0) {
+    throw HeightMapFileError(path, line, 0, key + " after the first data row (line " +
+                                                std::to_string(first_data_line) + ")");
+  }
+  if (version_line > 0) throw HeightMapFileError(path, line, 0, key + " given twice");
+  version_line = line;
+  const auto v = parseNumber(value);
+  const bool known = v && std::find(kFormatVersions.begin(), kFormatVersions.end(), *v) !=
+                              kFormatVersions.end();
+  if (!known) {
+    throw HeightMapFileError(path, line, 0,
+                             key + ": '" + std::string(value) +
+                                 "' is not a format version this geaware reads (it reads " +
+                                 describeVersions(kFormatVersions) + ")");
+  }
+}
 
+}  // namespace
 
 HeightMapFileError::HeightMapFileError(std::string file, int line, int column,
                                    const std::string& message)
@@ -55,6 +79,7 @@ model::HeightGrid readHeightMapFile(const std::string& path) {
   std::optional<double> origin_y;
   std::optional<double> cell;
   int first_data_line = 0;
+  int version_line = 0;
   std::vector<std::vector<double>> rows;
   std::string text;
   int line = 0;
@@ -68,6 +93,10 @@ model::HeightGrid readHeightMapFile(const std::string& path) {
       const auto colon = body.find(':');
       if (colon == std::string_view::npos) continue;
       const std::string_view key = trim(body.substr(0, colon));
+      if (key == kFormatVersionKey) {
+        checkFormatVersion(path, line, trim(body.substr(colon + 1)), first_data_line, version_line);
+        continue;
+      }
       std::optional<double>* slot = key == "origin_x_m"   ? &origin_x
                                     : key == "origin_y_m" ? &origin_y
                                     : key == "cell_m"     ? &cell

@@ -83,4 +83,24 @@ TEST_F(HeightMapFile, RejectsBadHeaders) {
   expectFileError(::testing::TempDir() + "geaware_does_not_exist.csv", 0, 0, "cannot open");
 }
 
+TEST_F(HeightMapFile, FormatVersionIsOptionalAndChecked) {
+  const std::string grid = "0, 0\n0, 0\n";
+  // Absent or 1: today's format, the same grid.
+  const HeightGrid v1 =
+      readHeightMapFile(write("v1.csv", "# format_version: 1\n" + std::string(kHeader) + grid));
+  EXPECT_EQ(v1.heights, readHeightMapFile(write("v0.csv", std::string(kHeader) + grid)).heights);
+  EXPECT_EQ(v1.cell_m, 0.5);
+  // Another version, a word, twice or after the data: errors at the key's line.
+  expectFileError(write("v2.csv", std::string(kHeader) + "# format_version: 2\n" + grid), 5, 0,
+                  "header key 'format_version': '2' is not a format version this geaware reads "
+                  "(it reads 1)");
+  expectFileError(write("vx.csv", "# format_version: one\n" + std::string(kHeader) + grid), 1, 0,
+                  "'one' is not a format version");
+  expectFileError(
+      write("vtwice.csv", "# format_version: 1\n# format_version: 1\n" + std::string(kHeader) + grid),
+      2, 0, "given twice");
+  expectFileError(write("vlate.csv", std::string(kHeader) + "0, 0\n# format_version: 1\n0, 0\n"),
+                  6, 0, "after the first data row");
+}
+
 }  // namespace

@@ -9,7 +9,8 @@
 //     0.00, 0.00, 0.01, ...
 //
 // Header lines start with '#'; a line "# key: value" with one of the three keys sets it, every
-// key is required once, other '#' lines are comments. Blank lines are skipped.
+// key is required once, other '#' lines are comments. Blank lines are skipped. An optional
+// "# format_version: 1" names the format's version (absent: 1; another: an error).
 // sim::HeightMap is built from the grid (bilinear between the nodes, held at the border).
 
 #include <stdexcept>
