@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "geaware/ident/identify.hpp"
+#include "geaware/model/field_check.hpp"
 #include "geaware/model/ground_effect.hpp"
 #include "geaware/model/vehicle_schema.hpp"
 #include "geaware/ident/rig_logs.hpp"
@@ -258,9 +259,8 @@ ControllerCalibration calibrateController(const model::VehicleParams& file_vehic
   const Identified identified = identifyOnRigs(logs, file_vehicle, sweeps, c);
   c.vehicle = mergeIdentified(file_vehicle, identified, c);
   if (const auto errors = c.vehicle.validate(); !errors.empty()) {
-    std::string what = "calibration: the identified parameters are not a valid vehicle:";
-    for (const auto& e : errors) what += "\n  " + e.field + " = " + e.value + ": " + e.expected;
-    throw std::invalid_argument(what);
+    throw std::invalid_argument(model::describeErrors(
+        "calibration: the identified parameters are not a valid vehicle:", errors));
   }
   compareCurves(file_vehicle, truth, sweeps, c);
   return c;

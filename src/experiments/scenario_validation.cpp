@@ -3,7 +3,6 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <string>
 #include <utility>
 #include <vector>
@@ -11,6 +10,7 @@
 #include "flight_internal.hpp"
 #include "geaware/experiments/flight.hpp"
 #include "geaware/flatness/flat_map.hpp"
+#include "geaware/model/field_check.hpp"
 #include "geaware/model/vehicle_model.hpp"
 
 namespace geaware::experiments {
@@ -20,18 +20,7 @@ using detail::decimationOf;
 using detail::heightAbove;
 using detail::terrainOf;
 
-std::string show(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
-}
-
-std::string describe(const std::vector<ScenarioProblem>& problems) {
-  std::string s = "invalid flight scenario:";
-  for (const auto& p : problems)
-    s += "\n  " + p.field + " = " + p.value + ": expected " + p.expected;
-  return s;
-}
+std::string show(double v) { return model::formatValue(v); }
 
 void append(std::vector<ScenarioProblem>& out, std::vector<model::FieldError> errors,
             const std::string& prefix) {
@@ -114,7 +103,7 @@ void checkFeasibility(const FlightScenario& s, std::vector<ScenarioProblem>& out
 }  // namespace
 
 InvalidScenario::InvalidScenario(std::vector<ScenarioProblem> problems)
-    : std::invalid_argument(describe(problems)), problems_(std::move(problems)) {}
+    : std::invalid_argument(model::describeErrors("invalid flight scenario:", problems)), problems_(std::move(problems)) {}
 
 std::vector<ScenarioProblem> validate(const FlightScenario& s, ScenarioStage stage) {
   std::vector<ScenarioProblem> out;
