@@ -54,6 +54,10 @@ function(geaware_test name)
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} geaware_test_support GTest::gtest_main)
   geaware_defaults(${name})
+  # GoogleTest and Eigen are parsed once for the whole suite (see tests/CMakeLists.txt).
+  if(TARGET geaware_test_pch)
+    target_precompile_headers(${name} REUSE_FROM geaware_test_pch)
+  endif()
   gtest_discover_tests(${name} TEST_PREFIX "${name}." WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
                        PROPERTIES ENVIRONMENT "GEAWARE_SOURCE_DIR=${PROJECT_SOURCE_DIR}"
                        DISCOVERY_TIMEOUT 30)
