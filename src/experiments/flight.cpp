@@ -87,6 +87,15 @@ sim::TruthParams truthOf(const FlightScenario& s) {
   return truth;
 }
 
+/// The disturbance observer runs on the controller's ticks with the controller's filter, so its
+/// filtered quantities are delayed like the controller's own (paper: one "(·)_f").
+estimation::DisturbanceObserverParams observerParamsOf(const control::ControllerParams& c) {
+  estimation::DisturbanceObserverParams p;
+  p.rate_hz = c.rate_hz;
+  p.filter_cutoff_hz = c.filter_cutoff_hz;
+  return p;
+}
+
 sim::PlantConfig plantConfigOf(const FlightScenario& s) {
   sim::PlantConfig c = s.plant;
   c.step_s = 1.0 / s.plant_rate_hz;
@@ -110,6 +119,7 @@ class FlightLoop {
         sensors_(s.sensors, s.seed),
         eskf_(std::make_unique<estimation::Eskf>(s.eskf)),  // ≈ 125 kB: on the heap
         lattice_(s.lattice.value_or(estimation::LatticeHeightParams::forVehicle(s.vehicle))),
+        observer_(vehicle_, observerParamsOf(s.controller)),
         bins_(s.hover_bins),
         telemetry_rpm_(Eigen::Vector4d::Constant(x0_.n_rpm[0])) {  // replaced by the first sample
     if (s.disturbances.turbulence) {
@@ -224,11 +234,19 @@ class FlightLoop {
       in.height_valid = have_height_ && t - height_t_s_ <= s_.max_height_age_s + 0.5 * dt_;
       in.height_m = height_m_;
       in.rotor_speeds_rpm = telemetry_rpm_;
+      // The disturbance observer (paper eq. 6) on exactly the controller's inputs.
+      tick_.disturbance = observer_.update({in.t_s, in.gyro_B, in.accel_B, in.rotor_speeds_rpm,
+                                            in.estimate.q_WB});
+      in.external_accel_W = tick_.disturbance.a_ext_W;
+      in.external_accel_valid = tick_.disturbance.valid;
       tick_.output = controller_->update(in);
       throttle_ = tick_.output.throttle;
       ++result_.controller_updates;
       tick_.attitude_error_rad = model::angleBetween(x.q_WB, tick_.output.q_des_WB);
     } else {
+      tick_.disturbance = estimation::DisturbanceEstimate{};
+      in.external_accel_W.setZero();
+      in.external_accel_valid = false;
       tick_.output = control::ControllerOutput{};
       tick_.output.throttle = throttle_;
       tick_.attitude_error_rad = 0.0;
@@ -267,6 +285,7 @@ class FlightLoop {
   // The controller side: built from the nominal vehicle and sensor data only.
   std::unique_ptr<estimation::Eskf> eskf_;
   const estimation::LatticeHeightEstimator lattice_;
+  estimation::DisturbanceObserver observer_;  // paper eq. 6, on the controller's inputs
   std::optional<control::Controller> controller_;
   bool perturbed_start_ = false;
   std::array<double, 4> throttle_{};

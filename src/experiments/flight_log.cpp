@@ -68,6 +68,9 @@ const std::vector<std::string_view>& flightLogColumns() {
       "n_true_4_rpm", "throttle_1", "throttle_2", "throttle_3", "throttle_4",
       // control::ControllerFlag bits
       "flags",
+      // the disturbance observer (paper eq. 6), filtered: ã_ext (world), τ̃_ext (body), F̃_G
+      "dob_valid", "dob_ax_mps2", "dob_ay_mps2", "dob_az_mps2", "dob_tau_x_Nm", "dob_tau_y_Nm",
+      "dob_tau_z_Nm", "dob_f_g",
       // what `geaware identify flight` reads (docs/identification.md, "Flight log"): the
       // controller-side height, velocity, attitude and rotor telemetry, and the external
       // acceleration ã_ext = R_WB·f_B − z_B·k_T·Σn²/m of the nominal vehicle (unfiltered)
@@ -150,6 +153,11 @@ void CsvFlightLog::onTick(const FlightTick& k) noexcept {
   for (double n : x.n_rpm) w.num(n);
   for (double t : k.throttle) w.num(t);
   w.integer(out.flags);
+  const estimation::DisturbanceEstimate& d = k.disturbance;
+  w.integer(d.valid ? 1 : 0);
+  w.vec3(d.a_ext_W);
+  w.vec3(d.tau_ext_B);
+  w.num(d.f_g_valid ? d.f_g_ratio : 0.0);
   // The identification columns.
   w.num(in.height_m);
   w.vec3(in.estimate.v_W);

@@ -51,6 +51,11 @@ struct ControllerInput {
   double height_m = 0.0;                  ///< rotor-plane height from the ranger [m]
   bool height_valid = false;              ///< false: no reading this tick (missing or rejected)
   Eigen::Vector4d rotor_speeds_rpm = Eigen::Vector4d::Zero();  ///< measured (telemetry) [rpm]
+  /// The disturbance observer's external acceleration ã_ext (estimation::DisturbanceObserver,
+  /// paper eq. 6), world frame [m/s²]. Read only by the disturbance feed-forward
+  /// (ControllerParams::dob_time_constant_s > 0); the paper's configurations ignore it.
+  Eigen::Vector3d external_accel_W = Eigen::Vector3d::Zero();
+  bool external_accel_valid = false;  ///< false: no estimate this tick (warming up, bad input)
 };
 
 /// Conditions met during an update (bit flags).

@@ -9,9 +9,10 @@
 //   3. the lattice estimator turns a ranger frame into the rotor-plane height, with the ESKF
 //      attitude;
 //   4. on a control tick (every plant_rate/controller.rate_hz steps, 200 Hz by default) the
-//      controller runs on the latest estimate, height and rotor telemetry and the reference
-//      of the trajectory; its throttles are held until the next tick; metrics and the log
-//      observe the tick (they, and only they, also read the truth);
+//      disturbance observer (paper eq. 6) runs on the controller's inputs, then the controller
+//      runs on the latest estimate, height, rotor telemetry, the observer's ã_ext and the
+//      reference of the trajectory; its throttles are held until the next tick; metrics and the
+//      log observe the tick (they, and only they, also read the truth);
 //   5. the plant advances one step with the held throttles (wind and turbulence included).
 // The controller is built from the scenario's nominal vehicle and sees nothing else: its input
 // is a control::ControllerInput filled from the estimators and the telemetry. The truth
@@ -30,6 +31,7 @@
 #include "geaware/control/controller.hpp"
 #include "geaware/control/controller_params.hpp"
 #include "geaware/control/residual_force.hpp"
+#include "geaware/estimation/disturbance_observer.hpp"
 #include "geaware/estimation/eskf.hpp"
 #include "geaware/estimation/lattice_height.hpp"
 #include "geaware/experiments/tracking_metrics.hpp"
@@ -199,6 +201,10 @@ struct FlightTick {
   bool controller_active = false;    ///< false before the estimator has its first pose
   bool in_trajectory = false;        ///< t_traj ∈ [0, duration]: the tick counts in the metrics
   control::ControllerInput input;    ///< exactly what the controller was given
+  /// The disturbance observer on this tick (paper eq. 6; estimation::DisturbanceObserver on the
+  /// controller's own inputs: bias-corrected IMU, attitude estimate, rotor telemetry); invalid
+  /// while the controller is inactive. Its ã_ext is also in `input`.
+  estimation::DisturbanceEstimate disturbance;
   control::ControllerOutput output;  ///< its commands (zero when inactive)
   std::array<double, 4> throttle{};  ///< what goes to the motors until the next tick
   sim::PlantState truth;             ///< the true state at t (observers only)
