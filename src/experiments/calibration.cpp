@@ -42,12 +42,12 @@ std::size_t appendSweep(const sim::ForceTorquePlatform& rig, const sim::Platform
   });
 }
 
-/// The stand holds rotor 1 of the truth: its k_T, k_I (with its thrust spread), J_R and ESC.
+/// The stand holds rotor 1 of the truth: its k_T, k_I (with their spreads), J_R and ESC.
 model::VehicleParams standVehicle(const model::VehicleParams& file_vehicle,
                                   const sim::TruthParams& truth) {
   model::VehicleParams v = file_vehicle;
   v.rotor.k_T_N_per_rpm2 = truth.k_T_N_per_rpm2 * truth.thrust_multiplier[0];
-  v.rotor.k_I_Nm_per_rpm2 = truth.k_I_Nm_per_rpm2 * truth.thrust_multiplier[0];
+  v.rotor.k_I_Nm_per_rpm2 = truth.k_I_Nm_per_rpm2 * truth.torque_multiplier[0];
   v.rotor.J_R_kgm2 = truth.motor.J_R_kgm2;
   v.throttle = truth.motor.throttle;
   return v;

@@ -37,8 +37,9 @@ double truthHoverSpeed(const sim::TruthParams& truth, const sim::Terrain& terrai
   const sim::RotorSurroundings around =
       sim::rotorSurroundings(&terrain, p_com, R, geometry.position_B);
   constexpr double kRef = 1000.0;  // [rpm]
-  const sim::RotorAeroOutput out = aero.compute(
-      {kRef, kRef, kRef, kRef}, R, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), around);
+  const sim::RotorAeroOutput out =
+      aero.compute({kRef, kRef, kRef, kRef}, R, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+                   aero.flightFactors(around.ground_distance_m));  // the in-flight cushion
   const double thrust = out.wrench.force_B.z();
   return kRef * std::sqrt(truth.mass_kg * truth.gravity_mps2 / thrust);
 }

@@ -8,6 +8,29 @@
 
 namespace geaware::sim {
 
+ThrottleDelay::ThrottleDelay(double dead_time_s, double step_s)
+    : dead_time_s_(dead_time_s),
+      ring_(static_cast<std::size_t>(std::ceil(dead_time_s / step_s - 1e-9)) + 2) {}
+
+const std::array<double, 4>& ThrottleDelay::apply(double t_s,
+                                                  const std::array<double, 4>& command) noexcept {
+  if (count_ == ring_.size()) {  // full: the oldest pending command is lost
+    head_ = slot(1);
+    --count_;
+    ++overflowed_;
+  }
+  ring_[slot(count_)] = Entry{t_s, command};
+  ++count_;
+  // The command in force at t − dead is the latest one issued at or before then: drop every
+  // older one (a tolerance absorbs the round-off of accumulated simulation time).
+  const double due_s = t_s - dead_time_s_ + 1e-9;
+  while (count_ >= 2 && ring_[slot(1)].t_s <= due_s) {
+    head_ = slot(1);
+    --count_;
+  }
+  return ring_[head_].command;
+}
+
 Motors::Motors(const TruthParams& params, const std::array<double, 4>& initial_rpm)
     : motor_(params.motor),
       battery_(params.battery),

@@ -46,7 +46,7 @@ class RotorAeroContribution final : public Contribution {
   /// (the plant asks at the last stage, the one lastAero() reports).
   [[nodiscard]] Wrench stageWrench(const ContributionContext& ctx, bool keep_outputs) noexcept {
     const Eigen::Vector3d v_air_W = ctx.body.v_W - ctx.wind_W;
-    if (!held_) factors_ = aero_.groundFactors(ctx.surroundings.ground_distance_m);
+    if (!held_) factors_ = aero_.flightFactors(ctx.surroundings.ground_distance_m);
     if (!keep_outputs) return aero_.wrench(ctx.n_rpm, ctx.R_WB, v_air_W, ctx.body.w_B, factors_);
     last_ = aero_.compute(ctx.n_rpm, ctx.R_WB, v_air_W, ctx.body.w_B, factors_);
     return last_.wrench;
@@ -64,6 +64,24 @@ class RotorAeroContribution final : public Contribution {
   RotorAeroOutput last_;
   RotorGroundFactors factors_;
   bool held_ = false;  // false: from ctx.surroundings at every evaluation
+};
+
+/// Quadratic airframe drag at the CoM, F = −½·ρ·C_dA·|v_air|·v_air (body frame; no torque).
+/// Only built when C_dA > 0.
+class AirframeDragContribution final : public Contribution {
+ public:
+  explicit AirframeDragContribution(const RotorAeroParams& p)
+      : half_rho_cda_(0.5 * p.air_density_kg_per_m3 * p.airframe_drag_area_m2) {}
+  [[nodiscard]] const char* name() const noexcept override { return "airframe_drag"; }
+  [[nodiscard]] Wrench wrench(const ContributionContext& ctx) noexcept override {
+    const Eigen::Vector3d v_air_W = ctx.body.v_W - ctx.wind_W;
+    Wrench w;
+    w.force_B = ctx.R_WB.transpose() * (-half_rho_cda_ * v_air_W.norm() * v_air_W);
+    return w;
+  }
+
+ private:
+  double half_rho_cda_;  // ½·ρ·C_dA [kg/m]
 };
 
 /// Motor reaction (J_R·ṅ) and gyroscopic torques.
@@ -148,6 +166,8 @@ Plant::Plant(const TruthParams& params, std::shared_ptr<const Terrain> terrain,
       config_(config),
       mass_(params.mass_kg, params.inertia_kgm2),
       motors_(params, initial.n_rpm) {
+  if (params_.motor.dead_time_s > 0.0)
+    dead_time_.emplace(params_.motor.dead_time_s, config_.step_s);
   for (std::size_t i = 0; i < 4; ++i)
     rotor_from_com_B_[i] = params_.rotor_position_B[i] - params_.cog_offset_B;
   for (int k = 0; k < config_.rim_samples; ++k) {
@@ -166,6 +186,11 @@ Plant::Plant(const TruthParams& params, std::shared_ptr<const Terrain> terrain,
     aero_ = aero.get();
     last_aero_ = &aero->last();
     contributions_.push_back(std::move(aero));
+  }
+  if (config_.rotor_aerodynamics && params_.aero.airframe_drag_area_m2 > 0.0) {
+    auto drag = std::make_unique<detail::AirframeDragContribution>(params_.aero);
+    airframe_drag_ = drag.get();
+    contributions_.push_back(std::move(drag));
   }
   if (config_.motor_reaction || config_.gyroscopic) {
     auto motor = std::make_unique<detail::MotorTorqueContribution>(params_, config_.motor_reaction,
@@ -275,10 +300,10 @@ StepResult Plant::step(const std::array<double, 4>& throttle, double dt_s) {
   // 2. Fix the motor targets, the ground-effect factors (at the rotor distances predicted for
   //    mid-step, see plant.hpp) and the disturbances' noise for this step.
   t0_s_ = state_.t_s;
-  motors_.beginStep(t, dt_s);
+  motors_.beginStep(dead_time_ ? dead_time_->apply(t0_s_, t) : t, dt_s);
   sampleTerrain();
   if (aero_ != nullptr && !config_.ground_effect_per_stage)
-    aero_->hold(aero_->model().groundFactors(midStepGroundDistances(dt_s)));
+    aero_->hold(aero_->model().flightFactors(midStepGroundDistances(dt_s)));
   for (std::size_t k = builtin_count_; k < contributions_.size(); ++k)
     contributions_[k]->beginStep(t0_s_, dt_s, state_);
 
@@ -339,6 +364,7 @@ void Plant::evaluate(double s, RigidBodyDerivative& out) {
   Wrench total;
   if (gravity_ != nullptr) total += gravity_->wrench(ctx_);
   if (aero_ != nullptr) total += aero_->stageWrench(ctx_, s == stage_last_s_);
+  if (airframe_drag_ != nullptr) total += airframe_drag_->wrench(ctx_);
   if (motor_torques_ != nullptr) total += motor_torques_->wrench(ctx_);
   for (std::size_t k = builtin_count_; k < contributions_.size(); ++k)
     total += contributions_[k]->wrench(ctx_);

@@ -17,6 +17,11 @@ namespace geaware::sim {
 
 using model::formatValue;
 
+namespace {
+/// A thrust axis must lie within 15° of z_B (cos 15°): anything else is not a misalignment.
+constexpr double kMinAxisZ = 0.9659258262890683;
+}  // namespace
+
 std::vector<model::FieldError> RotorAeroParams::validate() const {
   std::vector<model::FieldError> e;
   model::FieldChecker c(e);
@@ -43,6 +48,12 @@ std::vector<model::FieldError> RotorAeroParams::validate() const {
   c.range("aero.drag_ground_reduction_x", drag_ground_reduction_x, 0.0, 0.99, kInclusive, "[-]");
   c.range("aero.drag_ground_reduction_y", drag_ground_reduction_y, 0.0, 0.99, kInclusive, "[-]");
   c.range("aero.drag_ground_height_m", drag_ground_height_m, 1e-3, 10.0, kInclusive, "m");
+  c.range("aero.in_flight_cushion_scale", in_flight_cushion_scale, 0.0, 2.0, kInclusive, "[-]");
+  c.range("aero.translational_lift_per_mps2", translational_lift_per_mps2, 0.0, 1.0, kInclusive,
+          "1/(m/s)²");
+  c.range("aero.translational_lift_max", translational_lift_max, 0.0, 0.5, kInclusive, "[-]");
+  c.range("aero.airframe_drag_area_m2", airframe_drag_area_m2, 0.0, 1.0, kInclusive, "m²");
+  c.range("aero.air_density_kg_per_m3", air_density_kg_per_m3, 0.5, 1.5, kInclusive, "kg/m³");
   if (min_ground_distance_m >= ground_effect_range_m) {
     c.fail("aero.min_ground_distance_m", formatValue(min_ground_distance_m),
            "less than aero.ground_effect_range_m");
@@ -74,6 +85,13 @@ RotorAerodynamics::RotorAerodynamics(const RotorGeometry& geometry, const RotorA
     }
     if (!(geometry.spin[i] == 1.0 || geometry.spin[i] == -1.0)) {
       errors.push_back({"geometry.spin[" + idx + "]", formatValue(geometry.spin[i]), "+1 or −1"});
+    }
+    const Eigen::Vector3d& a = geometry.thrust_axis_B[i];
+    if (!(a.allFinite() && std::abs(a.norm() - 1.0) < 1e-9 && a.z() > kMinAxisZ)) {
+      errors.push_back({"geometry.thrust_axis_B[" + idx + "]",
+                        a.allFinite() ? "norm " + formatValue(a.norm()) + ", z " + formatValue(a.z())
+                                      : "non-finite",
+                        "a unit vector within 15° of z_B"});
     }
     centre += geometry.position_B[i] / 4.0;
   }
@@ -109,7 +127,13 @@ RotorAerodynamics::RotorAerodynamics(const RotorGeometry& geometry, const RotorA
     r_z_[k] = geometry.position_B[i].z();
     k_T_[k] = geometry.k_T_N_per_rpm2[i];
     spin_k_I_[k] = geometry.spin[i] * geometry.k_I_Nm_per_rpm2[i];
+    const Eigen::Vector3d& a = geometry.thrust_axis_B[i];
+    a_x_[k] = a.x();
+    a_y_[k] = a.y();
+    a_z_[k] = a.z();
+    tilted_ = tilted_ || a != Eigen::Vector3d::UnitZ();
   }
+  lift_ = params.translational_lift_per_mps2 > 0.0 && params.translational_lift_max > 0.0;
   // z*: the peak of the (unimodal) rotor-resolved term on [min distance, merge height], by
   // golden-section search (once, here).
   double lo = params.min_ground_distance_m;
@@ -284,7 +308,13 @@ Wrench RotorAerodynamics::evaluate(const std::array<double, 4>& n_rpm, const Eig
   const A4 dphi = fade * phi;
   // 5. Thrust: free-air plus the increment (β of it on the rotor's own n², the rest shared).
   const double beta = params_.own_thrust_fraction;
-  const A4 thrust = t_free + dphi * (beta * t_free + (1.0 - beta) * t_mean);
+  A4 thrust = t_free + dphi * (beta * t_free + (1.0 - beta) * t_mean);
+  if (lift_) {
+    // 5a. Translational lift on the free-air part: 1 + min(c·v_h², max) (docs/world.md).
+    const A4 lift = (params_.translational_lift_per_mps2 * (v_x * v_x + v_y * v_y))
+                        .min(params_.translational_lift_max);
+    thrust += lift * t_free;
+  }
   if constexpr (kPerRotor) {
     const A4 ratio = thrust / t_free;  // a stopped rotor's lane (0/0) is replaced below
     for (std::size_t i = 0; i < 4; ++i) {
@@ -301,11 +331,29 @@ Wrench RotorAerodynamics::evaluate(const std::array<double, 4>& n_rpm, const Eig
                  Eigen::Map<const A4>(factors.drag_scale_y.data()) * n_abs * v_y;
   // 7. Torque about the CoM: Σ r_i × F_i plus the aerodynamic reaction torques along z_B.
   const A4 q = spin_k_I_ * n * n * (1.0 - params_.reaction_torque_reduction * dphi);
+  if (tilted_) return tiltedWrench(thrust, f_x, f_y, q);
   Wrench w;
   w.force_B = Eigen::Vector3d(f_x.sum(), f_y.sum(), thrust.sum());
   w.torque_B =
       Eigen::Vector3d((r_y_ * thrust - r_z_ * f_y).sum(), (r_z_ * f_x - r_x_ * thrust).sum(),
                       (r_x_ * f_y - r_y_ * f_x).sum() + q.sum());
+  return w;
+}
+
+Wrench RotorAerodynamics::tiltedWrench(const Eigen::Array4d& thrust, const Eigen::Array4d& f_x,
+                                       const Eigen::Array4d& f_y,
+                                       const Eigen::Array4d& q) const noexcept {
+  // 7'. Each rotor's thrust T_i·a_i and reaction torque Q_i·a_i along its own axis a_i; the
+  //     rotor drag (f_x, f_y) stays in the body plane. Torque Σ r_i × F_i + Σ Q_i·a_i.
+  using A4 = Eigen::Array4d;
+  const A4 F_x = thrust * a_x_ + f_x;
+  const A4 F_y = thrust * a_y_ + f_y;
+  const A4 F_z = thrust * a_z_;
+  Wrench w;
+  w.force_B = Eigen::Vector3d(F_x.sum(), F_y.sum(), F_z.sum());
+  w.torque_B = Eigen::Vector3d((r_y_ * F_z - r_z_ * F_y + q * a_x_).sum(),
+                               (r_z_ * F_x - r_x_ * F_z + q * a_y_).sum(),
+                               (r_x_ * F_y - r_y_ * F_x + q * a_z_).sum());
   return w;
 }
 

@@ -16,19 +16,30 @@ namespace geaware::sim {
 
 using model::formatValue;
 
+Eigen::Vector3d tiltedAxis(const Eigen::Vector2d& tilt_rad) noexcept {
+  if (tilt_rad.x() == 0.0 && tilt_rad.y() == 0.0) return Eigen::Vector3d::UnitZ();
+  // R_y(θ_y)·R_x(θ_x)·z = (sin θ_y·cos θ_x, −sin θ_x, cos θ_y·cos θ_x).
+  const double cx = std::cos(tilt_rad.x());
+  return {std::sin(tilt_rad.y()) * cx, -std::sin(tilt_rad.x()), std::cos(tilt_rad.y()) * cx};
+}
+
 RotorGeometry TruthParams::rotorGeometry() const {
   RotorGeometry g;
   for (std::size_t i = 0; i < 4; ++i) {
     g.position_B[i] = rotor_position_B[i] - cog_offset_B;  // the aerodynamics work about the CoM
     g.spin[i] = yaw_sign[i];
-    // A motor that gives more thrust at the same speed (a slightly different propeller) gives
-    // proportionally more drag torque too: both scale with the blade's lift coefficient.
     g.k_T_N_per_rpm2[i] = k_T_N_per_rpm2 * thrust_multiplier[i];
-    g.k_I_Nm_per_rpm2[i] = k_I_Nm_per_rpm2 * thrust_multiplier[i];
+    g.k_I_Nm_per_rpm2[i] = k_I_Nm_per_rpm2 * torque_multiplier[i];
+    g.thrust_axis_B[i] = tiltedAxis(thrust_axis_tilt_rad[i]);
   }
   g.radius_m = propeller_radius_m;
   return g;
 }
+
+namespace {
+/// Largest thrust-axis tilt about either axis: ten degrees is a broken mount, not a tolerance.
+constexpr double kMaxTilt_rad = 10.0 * model::kDegToRad;
+}  // namespace
 
 std::vector<model::FieldError> TruthParams::validate() const {
   std::vector<model::FieldError> errors;
@@ -72,6 +83,12 @@ std::vector<model::FieldError> TruthParams::validate() const {
       c.fail("yaw_sign" + idx, formatValue(yaw_sign[i]), "+1 or -1");
     c.range("thrust_multiplier" + idx, thrust_multiplier[i], 0.5, 1.5, kInclusive,
             "(relative to k_T)");
+    c.range("torque_multiplier" + idx, torque_multiplier[i], 0.5, 1.5, kInclusive,
+            "(relative to k_I)");
+    c.range("thrust_axis_tilt_rad" + idx + ".x", thrust_axis_tilt_rad[i].x(), -kMaxTilt_rad,
+            kMaxTilt_rad, kInclusive, "rad");
+    c.range("thrust_axis_tilt_rad" + idx + ".y", thrust_axis_tilt_rad[i].y(), -kMaxTilt_rad,
+            kMaxTilt_rad, kInclusive, "rad");
   }
   c.range("propeller_radius_m", propeller_radius_m, 0.0, 5.0, kExclusive, "m");
   c.range("k_T_N_per_rpm2", k_T_N_per_rpm2, 0.0, 1.0, kExclusive, "N/rpm²");
@@ -79,6 +96,7 @@ std::vector<model::FieldError> TruthParams::validate() const {
   c.range("gravity_mps2", gravity_mps2, 0.0, 100.0, kInclusive, "m/s²");
 
   c.range("motor.time_constant_s", motor.time_constant_s, 0.0, 10.0, kExclusive, "s");
+  c.range("motor.dead_time_s", motor.dead_time_s, 0.0, 1.0, kInclusive, "s");
   c.range("motor.J_R_kgm2", motor.J_R_kgm2, 0.0, 1.0, kInclusive, "kg·m²");
   const bool lo_ok =
       c.range("motor.min_speed_rpm", motor.min_speed_rpm, 0.0, 1e6, kInclusive, "rpm");
@@ -167,7 +185,11 @@ TruthParams perturbed(const TruthParams& base, const MismatchSpec& spec, std::ui
   p.cog_offset_B =
       base.cog_offset_B + Eigen::Vector3d(uniform(spec.cog_offset_m), uniform(spec.cog_offset_m),
                                           uniform(spec.cog_offset_z_m));
-  for (double& m : p.thrust_multiplier) m *= 1.0 + uniform(spec.thrust_spread_rel);
+  for (std::size_t i = 0; i < 4; ++i) {
+    const double f = 1.0 + uniform(spec.thrust_spread_rel);
+    p.thrust_multiplier[i] *= f;
+    p.torque_multiplier[i] *= f;
+  }
   return p;
 }
 

@@ -15,6 +15,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -49,6 +50,39 @@ namespace geaware::sim {
   }
   return w;
 }
+
+/// The ESC/link dead time: the throttle a motor acts on at time t is the latest command issued
+/// at or before t − dead time (before any command that old: the first command received). With
+/// a fixed step dt and a dead time of k·dt a command reaches the motors exactly k steps later.
+/// The ring is sized at construction for commands every `step_s` (ceil(dead/step) + 2 entries);
+/// a caller stepping faster than that loses the oldest pending commands first (counted). No
+/// allocation in apply().
+class ThrottleDelay {
+ public:
+  /// dead_time_s > 0 and step_s > 0, both finite (validated by the plant).
+  ThrottleDelay(double dead_time_s, double step_s);
+
+  /// Record `command` issued at t_s (non-decreasing times) and return the command that reaches
+  /// the motors at t_s.
+  [[nodiscard]] const std::array<double, 4>& apply(double t_s,
+                                                   const std::array<double, 4>& command) noexcept;
+
+  [[nodiscard]] double deadTime_s() const noexcept { return dead_time_s_; }
+  [[nodiscard]] long overflowed() const noexcept { return overflowed_; }
+
+ private:
+  struct Entry {
+    double t_s = 0.0;
+    std::array<double, 4> command{};
+  };
+  [[nodiscard]] std::size_t slot(std::size_t k) const noexcept { return (head_ + k) % ring_.size(); }
+
+  double dead_time_s_;
+  std::vector<Entry> ring_;  // pending commands, oldest at head_
+  std::size_t head_ = 0;
+  std::size_t count_ = 0;
+  long overflowed_ = 0;
+};
 
 class Motors {
  public:

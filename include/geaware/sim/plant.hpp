@@ -29,6 +29,11 @@
 // every stage instead. The difference and the speed-up are measured in docs/sim-aerodynamics.md
 // ("Performance").
 //
+// As built (docs/world.md): the ESC/link dead time (MotorParams::dead_time_s) delays every
+// throttle command through a ring sized at construction (ThrottleDelay); the quadratic airframe
+// drag (RotorAeroParams::airframe_drag_area_m2 > 0) is a built-in contribution at the CoM; the
+// ground-effect factors are the in-flight ones (RotorAerodynamics::flightFactors).
+//
 // Determinism: no randomness here; the same inputs give bit-identical states (contributions
 // that draw noise must be seeded). No allocation in step().
 
@@ -80,6 +85,7 @@ class Contribution {
 namespace detail {
 class GravityContribution;
 class RotorAeroContribution;
+class AirframeDragContribution;
 class MotorTorqueContribution;
 }  // namespace detail
 
@@ -197,7 +203,9 @@ class Plant {
   // types so that the compiler can inline them; added contributions follow them, virtually.
   detail::GravityContribution* gravity_ = nullptr;
   detail::RotorAeroContribution* aero_ = nullptr;
+  detail::AirframeDragContribution* airframe_drag_ = nullptr;
   detail::MotorTorqueContribution* motor_torques_ = nullptr;
+  std::optional<ThrottleDelay> dead_time_;  // the ESC/link dead time (when > 0)
   std::size_t builtin_count_ = 0;
   bool stage_surroundings_ = true;  // fill ctx_.surroundings at every stage (someone reads them)
   const RotorAeroOutput* last_aero_ =

@@ -15,8 +15,14 @@
 // below z* ≈ 0.083 m so that the lower rotor's gain saturates),
 // sat_M a bounded redistribution with M = m·z̄, fade_i = v_i²/(v_i² + |v_inplane,i|²)
 // (Cheeseman–Bennett's forward-flight correction). Every symbol is a field below.
+//
+// As-built extensions (docs/world.md), each off by default: the plant uses s·φ_i
+// (in_flight_cushion_scale, flightFactors(); the rigs use φ_i), the free-air term k_T,i·n_i²
+// gains 1 + min(c·|v_inplane,i|², max) (translational lift), and a rotor whose thrust axis a_i
+// is tilted (RotorGeometry::thrust_axis_B) puts T_i and Q_i along a_i instead of z_B.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -70,6 +76,21 @@ struct RotorAeroParams {
   /// Rotor speed at which `induced_velocity_mps` holds; v_i scales with n (momentum theory) [rpm].
   double induced_velocity_ref_rpm = 10179.0;
 
+  // --- In flight only (the plant; the virtual rigs never apply these) --------------------------
+  /// Scale s of the additional-thrust fraction in flight, φ_i → s·φ_i, applied by
+  /// flightFactors() (the plant) and never by groundFactors() (the rigs): a hovering vehicle's
+  /// cushion is weaker than a clamped platform's (docs/world.md) [-].
+  double in_flight_cushion_scale = 1.0;
+  /// Translational lift c: each rotor's free-air thrust gains 1 + min(c·v_h², max), v_h its
+  /// in-plane air speed (docs/world.md) [1/(m/s)²].
+  double translational_lift_per_mps2 = 0.0;
+  /// Upper bound of the translational-lift gain [-].
+  double translational_lift_max = 0.05;
+  /// Airframe drag area C_d·A: F = −½·ρ·C_dA·|v_air|·v_air at the CoM (the plant) [m²].
+  double airframe_drag_area_m2 = 0.0;
+  /// Air density ρ for the airframe drag [kg/m³].
+  double air_density_kg_per_m3 = 1.225;
+
   // --- Rotor drag --------------------------------------------------------------------------------
   /// Per-rotor drag along body x per rpm, out of ground effect [N/(m/s)/rpm].
   double drag_x_N_per_mps_per_rpm = 9.8078e-6;
@@ -105,6 +126,10 @@ struct RotorGeometry {
   std::array<double, 4> k_T_N_per_rpm2{};
   /// Per-rotor aerodynamic torque coefficient [N·m/rpm²].
   std::array<double, 4> k_I_Nm_per_rpm2{};
+  /// Per-rotor unit thrust axis, body frame (thrust and reaction torque act along it; the rotor
+  /// drag stays in the body x–y plane). Default z_B [-].
+  std::array<Eigen::Vector3d, 4> thrust_axis_B{Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitZ(),
+                                               Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitZ()};
   /// Propeller radius [m].
   double radius_m = 0.0;
 };
@@ -157,9 +182,27 @@ class RotorAerodynamics {
   [[nodiscard]] std::array<double, 4> additionalThrustFraction(
       const std::array<double, 4>& ground_distance_m) const noexcept;
 
-  /// φ_i and the near-ground drag factors q_x, q_y of each rotor for the given distances.
+  /// φ_i and the near-ground drag factors q_x, q_y of each rotor for the given distances (the
+  /// rigs' cushion).
   [[nodiscard]] RotorGroundFactors groundFactors(
       const std::array<double, 4>& ground_distance_m) const noexcept;
+
+  /// groundFactors() with φ_i scaled by in_flight_cushion_scale: the cushion in flight (the
+  /// plant). Identical to groundFactors() for the default scale 1.
+  [[nodiscard]] RotorGroundFactors flightFactors(
+      const std::array<double, 4>& ground_distance_m) const noexcept {
+    RotorGroundFactors f = groundFactors(ground_distance_m);
+    if (params_.in_flight_cushion_scale != 1.0) {
+      for (double& phi : f.phi) phi *= params_.in_flight_cushion_scale;
+    }
+    return f;
+  }
+
+  /// Translational-lift gain 1 + min(c·v_h², max) for an in-plane air speed v_h [-].
+  [[nodiscard]] double translationalLiftGain(double v_inplane_mps) const noexcept {
+    return 1.0 + std::min(params_.translational_lift_per_mps2 * v_inplane_mps * v_inplane_mps,
+                          params_.translational_lift_max);
+  }
 
   [[nodiscard]] const RotorGeometry& geometry() const noexcept { return geometry_; }
   /// Height below which each rotor's rotor-resolved gain is held at its maximum [m].
@@ -173,6 +216,10 @@ class RotorAerodynamics {
                                 const Eigen::Vector3d& v_air_W, const Eigen::Vector3d& w_B,
                                 const RotorGroundFactors& factors,
                                 RotorAeroOutput* per_rotor) const noexcept;
+  /// The wrench of rotors with tilted thrust axes (evaluate()'s last step when tilted_).
+  [[nodiscard]] Wrench tiltedWrench(const Eigen::Array4d& thrust, const Eigen::Array4d& f_x,
+                                    const Eigen::Array4d& f_y,
+                                    const Eigen::Array4d& q) const noexcept;
   [[nodiscard]] double collective(double z_mean) const noexcept;
   /// The rotor-resolved law l(z) = num/den of four distances at once (one SIMD lane per rotor).
   void rotorResolvedTerms(const Eigen::Array4d& z, Eigen::Array4d& num,
@@ -191,6 +238,12 @@ class RotorAerodynamics {
   Eigen::Array4d r_z_ = Eigen::Array4d::Zero();
   Eigen::Array4d k_T_ = Eigen::Array4d::Zero();
   Eigen::Array4d spin_k_I_ = Eigen::Array4d::Zero();
+  // Thrust axes (used only when tilted_: some axis is not exactly z_B).
+  Eigen::Array4d a_x_ = Eigen::Array4d::Zero();
+  Eigen::Array4d a_y_ = Eigen::Array4d::Zero();
+  Eigen::Array4d a_z_ = Eigen::Array4d::Ones();
+  bool tilted_ = false;
+  bool lift_ = false;  // translational lift on (c > 0)
   double inv_range_ = 0.0;  // 1/ground_effect_range_m
   // Precomputed from the geometry and the parameters.
   double image_num_ = 0.0;      // (R/4)²

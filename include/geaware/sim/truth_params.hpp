@@ -42,6 +42,9 @@ struct BatteryParams {
 
 /// Motor/ESC truth. Rotor speed follows a first-order lag toward the ESC's steady speed.
 struct MotorParams {
+  /// ESC/link dead time: a throttle command reaches the motors this much later (companion
+  /// computer → flight controller → DShot; docs/world.md). 0: at once (today) [s].
+  double dead_time_s = 0.0;
   double time_constant_s = 0.03;  ///< first-order speed time constant τ [s] (7-inch, ~30 ms)
   double min_speed_rpm = 0.0;     ///< hard speed floor (0: motor may stop) [rpm]
   double max_speed_rpm =
@@ -74,7 +77,15 @@ struct TruthParams {
   double k_T_N_per_rpm2 = 0.0;      ///< nominal thrust coefficient, out of ground effect [N/rpm²]
   double k_I_Nm_per_rpm2 = 0.0;     ///< nominal aerodynamic torque coefficient [N·m/rpm²]
   std::array<double, 4> thrust_multiplier{1.0, 1.0, 1.0,
-                                          1.0};  ///< per-motor k_T (and k_I) spread [-]
+                                          1.0};  ///< per-motor k_T scale (spread) [-]
+  std::array<double, 4> torque_multiplier{1.0, 1.0, 1.0,
+                                          1.0};  ///< per-motor k_I scale (spread) [-]
+  /// Each rotor's thrust-axis misalignment: the axis is z_B tilted about body x by [0], then
+  /// about body y by [1] (motor mounts, arm flex). Thrust and reaction torque act along it [rad].
+  std::array<Eigen::Vector2d, 4> thrust_axis_tilt_rad{Eigen::Vector2d::Zero(),
+                                                      Eigen::Vector2d::Zero(),
+                                                      Eigen::Vector2d::Zero(),
+                                                      Eigen::Vector2d::Zero()};
   MotorParams motor;
   BatteryParams battery;
   std::vector<Eigen::Vector3d>
@@ -83,7 +94,7 @@ struct TruthParams {
   double gravity_mps2 = 9.81;  ///< [m/s²] (model::kGravity)
 
   /// The rotor geometry the aerodynamics needs: positions relative to the CoM, per-rotor
-  /// coefficients with the thrust spread applied.
+  /// coefficients with the k_T and k_I spreads applied, the tilted thrust axes.
   [[nodiscard]] RotorGeometry rotorGeometry() const;
 
   /// Every field that is not finite or not in its physical range, with its value and what was
@@ -91,12 +102,17 @@ struct TruthParams {
   [[nodiscard]] std::vector<model::FieldError> validate() const;
 };
 
+/// The unit thrust axis of a rotor whose mount is tilted about body x by tilt.x(), then about
+/// body y by tilt.y() [rad]: R_y·R_x·z_B (exactly z_B for no tilt).
+[[nodiscard]] Eigen::Vector3d tiltedAxis(const Eigen::Vector2d& tilt_rad) noexcept;
+
 /// The truth identical to the nominal vehicle: no CoG offset, no thrust spread, the nominal
 /// curve and coefficients, battery at full charge, four landing feet under the rotor arms at
 /// the vehicle's lowest rotor-plane height. Requires validated nominal parameters.
 [[nodiscard]] TruthParams fromNominal(const model::VehicleParams& nominal);
 
-/// A seeded random variation of `base` within `spec` (mass, inertia, CoG, thrust spread).
+/// A seeded random variation of `base` within `spec` (mass, inertia, CoG, thrust spread; a
+/// motor's k_I moves with its k_T by the same factor, as a different propeller's would).
 /// The same seed always gives the same vehicle. Inertia stays a valid rigid-body inertia.
 [[nodiscard]] TruthParams perturbed(const TruthParams& base, const MismatchSpec& spec,
                                     std::uint64_t seed);
