@@ -127,6 +127,10 @@ class FlightLoop {
       plant_.addContribution(
           std::make_unique<sim::GroundTurbulence>(s.disturbances.turbulence_params, s.seed));
     }
+    if (s.disturbances.unsteadiness) {
+      plant_.addContribution(
+          std::make_unique<sim::Unsteadiness>(s.disturbances.unsteadiness_params, s.seed));
+    }
     if (s.disturbances.wind) wind_.emplace(s.disturbances.wind_params, s.seed);
     // Motors at the throttle that holds the initial rotor speed.
     throttle_.fill(plant_.throttleForSteadySpeed(x0_.n_rpm[0]));

@@ -58,6 +58,35 @@ Wrench GroundTurbulence::wrench(const ContributionContext& ctx) noexcept {
   return wrenchAt(ctx.surroundings.ground_distance_m);
 }
 
+std::vector<model::FieldError> UnsteadinessParams::validate() const {
+  std::vector<model::FieldError> out;
+  model::FieldChecker c(out);
+  using enum model::LowerBound;
+  c.range("torque_std_Nm", torque_std_Nm, 0.0, 10.0, kInclusive, "N·m");
+  c.range("force_std_N", force_std_N, 0.0, 100.0, kInclusive, "N");
+  c.range("correlation_time_s", correlation_time_s, 0.0, 1e3, kExclusive, "s");
+  return out;
+}
+
+Unsteadiness::Unsteadiness(const UnsteadinessParams& params, std::uint64_t scenario_seed)
+    : params_(model::validated(params)),
+      noise_(scenario_seed, salt::kUnsteadiness),
+      force_(params_.correlation_time_s, noise_),
+      torque_(params_.correlation_time_s, noise_) {}
+
+void Unsteadiness::beginStep(double /*t_s*/, double dt_s, const PlantState& /*state*/) noexcept {
+  if (!(std::isfinite(dt_s) && dt_s >= 0.0)) return;
+  force_.advance(dt_s, noise_);
+  torque_.advance(dt_s, noise_);
+}
+
+Wrench Unsteadiness::wrench(const ContributionContext& /*ctx*/) noexcept {
+  Wrench w;
+  w.force_B = params_.force_std_N * force_.value();
+  w.torque_B = params_.torque_std_Nm * torque_.value();
+  return w;
+}
+
 std::vector<model::FieldError> WindParams::validate() const {
   std::vector<model::FieldError> out;
   model::FieldChecker c(out);

@@ -1,5 +1,6 @@
 #include "geaware/sim/mocap.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -19,12 +20,17 @@ std::vector<model::FieldError> MocapParams::validate() const {
   using enum model::LowerBound;
   c.range("rate_Hz", rate_Hz, 0.0, 1e4, kExclusive, "Hz");
   c.range("latency_s", latency_s, 0.0, 1.0, kInclusive, "s");
-  if (std::isfinite(rate_Hz) && rate_Hz > 0.0 && std::isfinite(latency_s) &&
-      latency_s * rate_Hz + 2.0 > Mocap::kQueueCapacity) {
-    c.fail(
-        "latency_s", formatValue(latency_s),
-        "latency_s·rate_Hz + 2 ≤ " + std::to_string(Mocap::kQueueCapacity) + " (poses in flight)");
+  const bool jitter_ok =
+      c.range("latency_jitter_std_s", latency_jitter_std_s, 0.0, 0.1, kInclusive, "s");
+  if (std::isfinite(rate_Hz) && rate_Hz > 0.0 && std::isfinite(latency_s) && jitter_ok &&
+      (latency_s + 4.0 * latency_jitter_std_s) * rate_Hz + 2.0 > Mocap::kQueueCapacity) {
+    c.fail("latency_s", formatValue(latency_s),
+           "(latency_s + 4·latency_jitter_std_s)·rate_Hz + 2 ≤ " +
+               std::to_string(Mocap::kQueueCapacity) + " (poses in flight)");
   }
+  if (!(reported_latency_s < 0.0))
+    c.range("reported_latency_s", reported_latency_s, 0.0, 1.0, kInclusive,
+            "s (negative: the true latency)");
   c.nonNegative("position_noise_std_m", position_noise_std_m, "m");
   c.range("attitude_noise_std_rad", attitude_noise_std_rad, 0.0, 0.5, kInclusive, "rad");
   c.range("dropout_probability", dropout_probability, 0.0, 1.0, kInclusive);
@@ -36,6 +42,7 @@ std::vector<model::FieldError> MocapParams::validate() const {
 Mocap::Mocap(const MocapParams& params, std::uint64_t scenario_seed)
     : params_(model::validated(params)),
       noise_(scenario_seed, salt::kMocap),
+      jitter_noise_(scenario_seed, salt::kMocapJitter),
       clock_(params_.rate_Hz) {}
 
 void Mocap::capture(const PlantState& s) noexcept {
@@ -67,7 +74,10 @@ void Mocap::capture(const PlantState& s) noexcept {
   const Eigen::Quaterniond dq = angle > 0.0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, dtheta / angle))
                                             : Eigen::Quaterniond::Identity();
   p.sample.q_WB = (s.q_WB * dq).normalized();
-  p.deliver_s = s.t_s + params_.latency_s;
+  double latency = params_.latency_s;
+  if (params_.latency_jitter_std_s > 0.0)
+    latency = std::max(0.0, latency + params_.latency_jitter_std_s * jitter_noise_.normal());
+  p.deliver_s = s.t_s + latency;
   if (count_ == kQueueCapacity) {  // drop the oldest
     head_ = (head_ + 1) % kQueueCapacity;
     --count_;
@@ -86,9 +96,12 @@ std::optional<model::MocapSample> Mocap::step(const PlantState& s) noexcept {
   if (count_ == 0 || !std::isfinite(s.t_s)) return std::nullopt;
   const Pending& oldest = ring_[static_cast<std::size_t>(head_)];
   if (s.t_s + SampleClock::kTolerance_s < oldest.deliver_s) return std::nullopt;
+  model::MocapSample out = oldest.sample;
   head_ = (head_ + 1) % kQueueCapacity;
   --count_;
-  return oldest.sample;
+  // The driver's stamp: the true capture time, or the arrival less the latency it believes in.
+  if (params_.reported_latency_s >= 0.0) out.t_s = s.t_s - params_.reported_latency_s;
+  return out;
 }
 
 }  // namespace geaware::sim

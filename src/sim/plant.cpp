@@ -264,8 +264,8 @@ const RotorAeroOutput& Plant::lastAero() const noexcept {
 void Plant::addContribution(std::unique_ptr<Contribution> contribution) {
   if (contribution == nullptr)
     throw std::invalid_argument("Plant::addContribution: null contribution");
+  if (contribution->readsSurroundings()) stage_surroundings_ = true;
   contributions_.push_back(std::move(contribution));
-  stage_surroundings_ = true;
 }
 
 StepResult Plant::step(const std::array<double, 4>& throttle) {

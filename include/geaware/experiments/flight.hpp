@@ -53,6 +53,8 @@ struct DisturbanceSettings {
   sim::GroundTurbulenceParams turbulence_params;
   bool wind = false;  ///< air velocity handed to the plant every step
   sim::WindParams wind_params;
+  bool unsteadiness = false;  ///< buffeting at any height (blade imbalance…), docs/world.md
+  sim::UnsteadinessParams unsteadiness_params;
 };
 
 /// What closes the loop.

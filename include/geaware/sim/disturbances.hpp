@@ -20,11 +20,17 @@
 // of the 4 m/s induced velocity), h_s = 0.15 m (about a rotor diameter: s(0.12) ≈ 0.61,
 // s(0.3) ≈ 0.20, s(1.0) ≈ 0.017), h_max = 2 m. Moderate: the paper's vehicle flies at 0.12 m.
 //
+// Unsteadiness at altitude (a Contribution; docs/world.md): what buffets a multirotor
+// wherever it flies — blade imbalance and tracking error, the rotors' own unsteady wakes,
+// turbulence — as a body-frame force and torque F = σ_F·x_F(t), τ = σ_τ·x_τ(t), x independent
+// unit Gauss–Markov processes per body axis with correlation time τ_c, independent of the
+// height. Seeded with its own salt (salt::kUnsteadiness): switching it on changes no other
+// stream. Default: off (σ = 0).
+//
 // Wind: an air velocity, nothing else. The runner advances it once per plant step and hands
 // it to Plant::setWind_W; the rotor aerodynamics then see the CoM velocity relative to the
-// air (rotor drag, the forward-speed fade of the ground effect). No separate drag force is
-// added (the identified rotor drag already is the vehicle's drag; adding a body drag would
-// count it twice). wind_W = mean + σ_g ⊙ x_g(t), x_g a unit Gauss–Markov process per world
+// air (rotor drag, the forward-speed fade of the ground effect, and the airframe drag and
+// translational lift when the truth has them, RotorAeroParams). wind_W = mean + σ_g ⊙ x_g(t), x_g a unit Gauss–Markov process per world
 // axis with correlation time T (a first-order, Dryden-like gust spectrum). Default: off.
 
 #include <array>
@@ -73,6 +79,34 @@ class GroundTurbulence final : public Contribution {
 
  private:
   GroundTurbulenceParams params_;
+  NoiseSource noise_;
+  GaussMarkov3 force_;
+  GaussMarkov3 torque_;
+};
+
+struct UnsteadinessParams {
+  double torque_std_Nm = 0.0;        ///< σ_τ about each body axis [N·m]
+  double force_std_N = 0.0;          ///< σ_F along each body axis [N]
+  double correlation_time_s = 0.05;  ///< τ_c of the Gauss–Markov processes [s]
+
+  [[nodiscard]] std::vector<model::FieldError> validate() const;
+};
+
+class Unsteadiness final : public Contribution {
+ public:
+  /// Throws model::InvalidParameters listing every invalid field. Noise stream:
+  /// (scenario_seed, salt::kUnsteadiness).
+  Unsteadiness(const UnsteadinessParams& params, std::uint64_t scenario_seed);
+
+  [[nodiscard]] const char* name() const noexcept override { return "altitude_unsteadiness"; }
+  [[nodiscard]] bool readsSurroundings() const noexcept override { return false; }
+  /// Advances the unit processes by dt (a non-finite or negative dt leaves them unchanged).
+  void beginStep(double t_s, double dt_s, const PlantState& state) noexcept override;
+  [[nodiscard]] Wrench wrench(const ContributionContext& ctx) noexcept override;
+  [[nodiscard]] const UnsteadinessParams& params() const noexcept { return params_; }
+
+ private:
+  UnsteadinessParams params_;
   NoiseSource noise_;
   GaussMarkov3 force_;
   GaussMarkov3 torque_;

@@ -10,6 +10,13 @@
 // hands out at most one pose per call, oldest first, so call it at least at the capture rate
 // (every plant step). A full ring drops its oldest pose (counted in overflowed()).
 //
+// Stamps (docs/world.md): the estimator only knows the latency the driver stamps. With
+// reported_latency_s < 0 (default) a pose carries its true capture time; otherwise it carries
+// the time it is handed out minus reported_latency_s, so a wrong reported latency is an unknown
+// delay. Jitter: each capture's latency is latency_s + N(0, latency_jitter_std_s²), at least 0,
+// drawn from its own stream (salt::kMocapJitter; the pose noise does not change); poses are still
+// handed out in capture order (a late one holds back the next, as on one network link).
+//
 // Dropouts: each capture is lost independently with dropout_probability; in addition, a
 // capture starts a burst with burst_probability, losing it and the next
 // burst_length_samples − 1 captures (occlusion). With bursts alone the lost fraction is
@@ -41,9 +48,11 @@ struct MocapParams {
   double dropout_probability = 0.01;      ///< independent loss of one capture [-]
   double burst_probability = 0.0;         ///< a capture starts a burst of losses [-]
   int burst_length_samples = 10;          ///< captures lost per burst, the first included [-]
+  double reported_latency_s = -1.0;       ///< latency the driver stamps; < 0: the true one, exact [s]
+  double latency_jitter_std_s = 0.0;      ///< 1σ of each capture's latency around latency_s [s]
 
   /// Every offending field; empty when usable. The latency must fit the delay ring:
-  /// latency_s·rate_Hz + 2 ≤ Mocap::kQueueCapacity.
+  /// (latency_s + 4·latency_jitter_std_s)·rate_Hz + 2 ≤ Mocap::kQueueCapacity.
   [[nodiscard]] std::vector<model::FieldError> validate() const;
 };
 
@@ -76,6 +85,7 @@ class Mocap {
 
   MocapParams params_;
   NoiseSource noise_;
+  NoiseSource jitter_noise_;  // (scenario_seed, salt::kMocapJitter)
   SampleClock clock_;
   std::array<Pending, kQueueCapacity> ring_{};
   int head_ = 0;   // oldest pending

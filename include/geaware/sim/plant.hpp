@@ -78,6 +78,9 @@ class Contribution {
   /// Called once at the start of every step, before the stage evaluations: a stochastic
   /// disturbance draws its (seeded) noise here and holds it over the step. Default: nothing.
   virtual void beginStep(double /*t_s*/, double /*dt_s*/, const PlantState& /*state*/) noexcept {}
+  /// Whether wrench() reads ctx.surroundings (the plant fills them at every stage only when some
+  /// contribution does). Default: true.
+  [[nodiscard]] virtual bool readsSurroundings() const noexcept { return true; }
   /// Body-frame force and torque about the CoM. Called four times per step; no allocation.
   [[nodiscard]] virtual Wrench wrench(const ContributionContext& ctx) noexcept = 0;
 };

@@ -28,6 +28,9 @@ inline constexpr std::uint64_t kRotorTelemetry = 0x74656c'00000003ULL;
 inline constexpr std::uint64_t kRanger = 0x726e67'00000004ULL;
 inline constexpr std::uint64_t kGroundTurbulence = 0x747262'00000005ULL;
 inline constexpr std::uint64_t kWind = 0x77696e'00000006ULL;
+inline constexpr std::uint64_t kImuVibration = 0x766962'00000007ULL;
+inline constexpr std::uint64_t kMocapJitter = 0x6a6974'00000008ULL;
+inline constexpr std::uint64_t kUnsteadiness = 0x756e73'00000009ULL;
 }  // namespace salt
 
 /// MT19937-64 (Matsumoto & Nishimura; Nishimura 2000), bit for bit the engine std::mt19937_64
