@@ -151,6 +151,9 @@ std::vector<ScenarioProblem> validate(const FlightScenario& s, ScenarioStage sta
     append(out, s.disturbances.turbulence_params.validate(), "disturbances.turbulence.");
   }
   if (s.disturbances.wind) append(out, s.disturbances.wind_params.validate(), "disturbances.wind.");
+  if (s.disturbances.unsteadiness) {
+    append(out, s.disturbances.unsteadiness_params.validate(), "disturbances.unsteadiness.");
+  }
   positive(out, "plant_rate_hz", s.plant_rate_hz);
   if (std::isfinite(s.plant_rate_hz) && s.plant_rate_hz > 0.0 &&
       decimationOf(s.plant_rate_hz, s.controller.rate_hz) == 0) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <utility>
 
 #include <Eigen/Eigenvalues>
 
@@ -136,6 +137,7 @@ std::vector<model::FieldError> TruthParams::validate() const {
   for (std::size_t i = 0; i < landing_feet_B.size(); ++i) {
     c.componentsWithin("landing_feet_B[" + std::to_string(i) + "]", landing_feet_B[i], 10.0, "m");
   }
+  for (model::FieldError& e : aero.validate()) errors.push_back(std::move(e));  // "aero.…"
   return errors;
 }
 

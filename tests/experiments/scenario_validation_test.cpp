@@ -45,6 +45,8 @@ TEST(FlightScenarioValidation, NamesEveryOffendingField) {
   s.start_hover_s = -1.0;
   s.sensors.ranger.side = 40;
   s.eskf.imu_rate_hz = 100.0;
+  s.disturbances.unsteadiness = true;
+  s.disturbances.unsteadiness_params.correlation_time_s = 0.0;
   const auto problems = validate(s);
   EXPECT_TRUE(mentions(problems, "vehicle.mass_kg"));
   EXPECT_TRUE(mentions(problems, "trajectory", "a trajectory to fly"));
@@ -53,6 +55,7 @@ TEST(FlightScenarioValidation, NamesEveryOffendingField) {
   EXPECT_TRUE(mentions(problems, "start_hover_s"));
   EXPECT_TRUE(mentions(problems, "sensors.ranger.side"));
   EXPECT_TRUE(mentions(problems, "eskf.imu_rate_hz", "sensors.imu.rate_Hz"));
+  EXPECT_TRUE(mentions(problems, "disturbances.unsteadiness.correlation_time_s"));
   try {
     (void)runFlight(s);
     FAIL() << "runFlight accepted an invalid scenario";
