@@ -41,11 +41,9 @@ struct FlyOptions {
   std::vector<std::string> ablate;
 };
 
-/// Parses "ACC:TORQUE" into the controller's two switches; false when malformed.
+/// Parses "recommended" or "ACC:TORQUE" into the controller's configuration; false when malformed.
 bool parseController(const std::string& text, control::ControllerParams& p) {
-  const auto colon = text.find(':');
-  return colon != std::string::npos && control::parse(text.substr(0, colon), p.acceleration) &&
-         control::parse(text.substr(colon + 1), p.torque);
+  return control::parseConfiguration(text, p);
 }
 
 /// CLI11 check of --controller (a malformed value is a usage error, exit status 2).
@@ -54,10 +52,10 @@ const CLI::Validator kControllerSpec(
       control::ControllerParams p;
       if (parseController(text, p)) return {};
       return "--controller '" + text +
-             "': expected ACC:TORQUE with ACC one of none, indi, neural, model and TORQUE one of "
-             "none, model, indi, model_indi (e.g. model:model_indi)";
+             "': expected 'recommended' or ACC:TORQUE with ACC one of none, indi, neural, model "
+             "and TORQUE one of none, model, indi, model_indi (e.g. model:model_indi)";
     },
-    "ACC:TORQUE");
+    "recommended|ACC:TORQUE");
 
 experiments::TrajectoryOptions flightPlan(const FlyOptions& o) {
   experiments::TrajectoryOptions p;
@@ -168,8 +166,10 @@ void addFlightOptions(CLI::App* cmd, FlyOptions& o) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   cmd->add_option("--controller", o.controller,
-                  "ACC:TORQUE, ACC in none|indi|neural|model, TORQUE in none|model|indi|model_indi "
-                  "(the paper's: model:model_indi)")
+                  "recommended (geaware's: model:model_indi with disturbance feed-forward, "
+                  "integral action and a clearance guard; docs/controller.md) or ACC:TORQUE, ACC "
+                  "in none|indi|neural|model, TORQUE in none|model|indi|model_indi (the paper's: "
+                  "model:model_indi)")
       ->check(kControllerSpec);
   cmd->add_option("--seed", o.seed, "seed of sensors and disturbances")->capture_default_str();
   cmd->add_flag("--no-turbulence", o.no_turbulence, "switch off the near-ground turbulence");

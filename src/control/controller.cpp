@@ -73,7 +73,8 @@ Controller::Controller(const model::VehicleModel& vehicle, ControllerParams para
       tau_hat_filter_(params_.filter_cutoff_hz, params_.rate_hz),
       accel_filter_(params_.filter_cutoff_hz, params_.rate_hz),
       thrust_vector_filter_(params_.filter_cutoff_hz, params_.rate_hz),
-      last_height_m_(kFarFromGroundM) {
+      last_height_m_(kFarFromGroundM),
+      min_rotor_plane_height_m_(vehicle.params().min_rotor_plane_height_m) {
   if (params_.acceleration == AccelerationCompensation::kNeural && !residual_) {
     throw std::invalid_argument("acceleration compensation 'neural' needs a residual-force model");
   }
@@ -92,6 +93,9 @@ void Controller::reset() noexcept {
   have_ground_ = false;
   have_yaw_lag_ = false;
   yaw_torque_lagged_Nm_ = 0.0;
+  dob_residual_mps2_.setZero();
+  position_integral_ms_.setZero();
+  last_flags_ = kFlagNone;
 }
 
 ControllerOutput Controller::fallback(std::uint32_t flags) const noexcept {
@@ -162,16 +166,96 @@ Controller::Measured Controller::measure(const ControllerInput& in,
   return m;
 }
 
+Eigen::Vector3d Controller::disturbanceResidual(const ControllerInput& in, double thrust_ref_N,
+                                                const Eigen::Matrix3d& R) noexcept {
+  if (!(params_.dob_time_constant_s > 0.0)) return Eigen::Vector3d::Zero();
+  if (in.external_accel_valid && in.external_accel_W.allFinite()) {
+    // What the model already accounts for in ã_ext: at the measured height, the extra thrust
+    // F_G(h)·T_ref/m along z_B (with the feed-forward's thrust: a thrust or mass error times F_G
+    // is a disturbance like any other) and the rotor drag at the estimated velocity. The rest is
+    // fed forward. The model's own dependence on the state (F_G's slope in h, D·v) stays in the
+    // loop as the physical spring and damping it is (docs/controller.md).
+    const double h = last_height_m_;
+    const bool model = params_.acceleration == AccelerationCompensation::kModel;
+    const Eigen::Vector2d d = model ? drag_.coefficients(h) : drag_.highAltitudeCoefficients();
+    Eigen::Vector3d explained = model::RotorDragModel::force_W(R, in.estimate.v_W, d) / mass_kg_;
+    if (model) explained += ground_effect_.thrustRatio(h) * thrust_ref_N / mass_kg_ * R.col(2);
+    const double lim = params_.dob_limit_mps2;
+    const Eigen::Vector3d raw = (in.external_accel_W - explained).cwiseMax(-lim).cwiseMin(lim);
+    // First-order low-pass, backward Euler: τ_d·ḋ = raw − d.
+    dob_residual_mps2_ += dt_s_ / (params_.dob_time_constant_s + dt_s_) * (raw - dob_residual_mps2_);
+  }
+  return dob_residual_mps2_;
+}
+
+Eigen::Vector3d Controller::integralTerm(const Eigen::Vector3d& e_p, std::uint32_t& flags) noexcept {
+  if (!params_.k_i_per_s3.any()) return Eigen::Vector3d::Zero();
+  // Conditional integration: while last tick's command was cut (tilt or thrust; the guard for
+  // z), the integral may shrink but not grow. And |K^I·∫e_p| ≤ integral_limit per axis.
+  const bool cut_xy = (last_flags_ & (kFlagTiltLimited | kFlagThrustSaturated)) != 0;
+  const bool cut_z = (last_flags_ & (kFlagThrustSaturated | kFlagClearanceGuard)) != 0;
+  Eigen::Vector3d a_int = Eigen::Vector3d::Zero();
+  for (int i = 0; i < 3; ++i) {
+    const double k_i = params_.k_i_per_s3[i];
+    if (k_i <= 0.0) continue;
+    double& I = position_integral_ms_[i];
+    const double next = I + e_p[i] * dt_s_;
+    if ((i < 2 ? cut_xy : cut_z) && std::abs(next) > std::abs(I)) {
+      flags |= kFlagIntegralHeld;
+    } else {
+      const double bound = params_.integral_limit_mps2 / k_i;
+      I = std::clamp(next, -bound, bound);
+      if (I != next) flags |= kFlagIntegralHeld;
+    }
+    a_int[i] = k_i * I;
+  }
+  return a_int;
+}
+
+Controller::Additions Controller::additions(const ControllerInput& in, double thrust_ref_N,
+                                            const Eigen::Matrix3d& R, std::uint32_t& flags) noexcept {
+  Additions x;
+  x.reference = in.reference;
+  if (params_.clearance_guard && have_ground_) {
+    // The floor: the landing gear's rotor-plane height plus the margin above the ground the
+    // ranger sees. The reference is raised to it (no descent through it), and the vertical
+    // command is bounded below by the barrier ψ = ḣ + α·(h − h_min) ≥ 0: ψ̇ ≥ −α·ψ when
+    // a_z ≥ −2α·ḣ − α²·(h − h_min) (docs/controller.md, "The clearance guard").
+    const double h_min = min_rotor_plane_height_m_ + params_.guard_margin_m;
+    const double z_floor = ground_z_m_ + h_min;
+    if (x.reference.p_W.z() < z_floor) {
+      x.reference.p_W.z() = z_floor;
+      x.reference.v_W.z() = std::max(x.reference.v_W.z(), 0.0);
+      x.reference.a_W.z() = std::max(x.reference.a_W.z(), 0.0);
+      flags |= kFlagClearanceGuard;
+    }
+    const double a = params_.guard_rate_per_s;
+    const double h = in.estimate.p_W.z() - ground_z_m_;
+    x.a_z_min = -2.0 * a * in.estimate.v_W.z() - a * a * (h - h_min);
+  }
+  x.a_int = integralTerm(x.reference.p_W - in.estimate.p_W, flags);
+  x.a_dob = disturbanceResidual(in, thrust_ref_N, R);
+  return x;
+}
+
 Eigen::Vector3d Controller::thrustVectorCommand(const ControllerInput& in,
                                                 const flatness::FlatState& ref, double h,
-                                                const Measured& m, Eigen::Vector3d& a_des,
+                                                const Measured& m, const Additions& x,
+                                                Eigen::Vector3d& a_des,
                                                 std::uint32_t& flags) const {
   const Eigen::Quaterniond q_est = in.estimate.q_WB.normalized();
   const Eigen::Matrix3d R = q_est.toRotationMatrix();
   const Eigen::Vector3d z_B = R.col(2);
-  const traj::FlatOutput& r = in.reference;
+  const traj::FlatOutput& r = x.reference;
   a_des = r.a_W + params_.k_p_per_s2.cwiseProduct(r.p_W - in.estimate.p_W) +
           params_.k_v_per_s.cwiseProduct(r.v_W - in.estimate.v_W);
+  // geaware's additions, each only when switched on (the paper's rows stay bit-identical).
+  if (params_.k_i_per_s3.any()) a_des += x.a_int;
+  if (a_des.z() < x.a_z_min) {
+    a_des.z() = x.a_z_min;  // the clearance guard
+    flags |= kFlagClearanceGuard;
+  }
+  if (params_.dob_time_constant_s > 0.0) a_des -= x.a_dob;
   // Desired specific thrust vector: the acceleration the rotors must give.
   Eigen::Vector3d f_cmd = Eigen::Vector3d::Zero();
   switch (params_.acceleration) {
@@ -255,9 +339,11 @@ ControllerOutput Controller::update(const ControllerInput& in) noexcept {
   const Eigen::Matrix3d R = q_est.toRotationMatrix();
   const Measured m = measure(in, R);
 
-  // 2. Acceleration command (paper eq. 31) and the specific thrust vector.
+  // 2. Acceleration command (paper eq. 31, with geaware's additions when switched on) and the
+  //    specific thrust vector.
+  const Additions x = additions(in, ref.thrust_N, R, flags);
   Eigen::Vector3d a_des;
-  const Eigen::Vector3d f_cmd = thrustVectorCommand(in, ref, h, m, a_des, flags);
+  const Eigen::Vector3d f_cmd = thrustVectorCommand(in, ref, h, m, x, a_des, flags);
 
   // 3. Attitude, body-rate and body-acceleration commands (paper eq. 32).
   const Eigen::Vector3d z_des = f_cmd.normalized();
@@ -304,7 +390,12 @@ ControllerOutput Controller::update(const ControllerInput& in) noexcept {
   out.yaw_torque_allocated_Nm = tau_alloc.z();
   out.tau_hat_B = m.tau_hat;
   out.height_used_m = h;
+  out.a_dob_W = x.a_dob;
+  out.a_int_W = x.a_int;
+  out.guard_min_accel_z_mps2 = x.a_z_min;
+  out.z_cmd_m = x.reference.p_W.z();
   out.flags = flags;
+  last_flags_ = flags;
   return out;
 }
 

@@ -51,6 +51,38 @@ bool parse(const std::string& text, TorqueCompensation& out) noexcept {
   return false;
 }
 
+namespace {
+
+/// The ranges of geaware's additions (docs/controller.md, "Parameters").
+void validateAdditions(const ControllerParams& p, model::FieldChecker& c) {
+  using enum model::LowerBound;
+  c.range("dob_time_constant_s", p.dob_time_constant_s, 0.0, 10.0, kInclusive, "s");
+  if (p.dob_time_constant_s > 0.0 && p.acceleration != AccelerationCompensation::kModel &&
+      p.acceleration != AccelerationCompensation::kNone) {
+    c.fail("dob_time_constant_s", formatValue(p.dob_time_constant_s),
+           std::string("0 with acceleration '") + toString(p.acceleration) +
+               "' (it measures or learns the force itself): the disturbance feed-forward needs "
+               "'model' or 'none'");
+  }
+  c.range("dob_limit_mps2", p.dob_limit_mps2, 0.0, 20.0, kExclusive, "m/s²");
+  const char* axes = "xyz";
+  for (int i = 0; i < 3; ++i) {
+    const std::string field = std::string("k_i_per_s3.") + axes[i];
+    const double bound = p.k_p_per_s2[i] * p.k_v_per_s[i];
+    const double k_i = p.k_i_per_s3[i];
+    if (!(std::isfinite(k_i) && k_i >= 0.0 && (k_i == 0.0 || k_i < bound))) {
+      c.fail(field, formatValue(k_i),
+             "a gain in [0, K^P·K^V = " + formatValue(bound) +
+                 ") 1/s³ (Routh–Hurwitz for s³ + K^V·s² + K^P·s + K^I)");
+    }
+  }
+  c.range("integral_limit_mps2", p.integral_limit_mps2, 0.0, 20.0, kExclusive, "m/s²");
+  c.range("guard_margin_m", p.guard_margin_m, 0.0, 1.0, kInclusive, "m");
+  c.range("guard_rate_per_s", p.guard_rate_per_s, 0.0, 100.0, kExclusive, "1/s");
+}
+
+}  // namespace
+
 std::vector<model::FieldError> ControllerParams::validate() const {
   std::vector<model::FieldError> e;
   model::FieldChecker c(e);
@@ -75,7 +107,79 @@ std::vector<model::FieldError> ControllerParams::validate() const {
     c.fail("thrust_pi_limit", formatValue(thrust_pi_limit), "a throttle fraction in [0, 0.5]");
   }
   c.integerRange("neural_iterations", neural_iterations, 1, 10);
+  validateAdditions(*this, c);
   return e;
+}
+
+bool ControllerParams::hasAdditions() const noexcept {
+  return dob_time_constant_s > 0.0 || k_i_per_s3.any() || clearance_guard;
+}
+
+ControllerParams recommendedControllerParams() {
+  ControllerParams p;
+  p.acceleration = AccelerationCompensation::kModel;
+  p.torque = TorqueCompensation::kModelIndi;
+  // docs/controller.md, "Why it is stable": τ_d six times faster than the position loop
+  // (ω_n = √K^P ≈ 1.7 rad/s) and four times slower than a 25 ms sensor/actuator timing mismatch.
+  p.dob_time_constant_s = 0.1;
+  p.dob_limit_mps2 = 3.0;
+  // s³ + K^V·s² + K^P·s + K^I = (s + 0.5)·(s² + 2s + 2) with K^P = 3, K^V = 2.5, K^I = 1.
+  p.k_i_per_s3 = Eigen::Vector3d::Constant(1.0);
+  p.integral_limit_mps2 = 1.0;
+  p.clearance_guard = true;
+  p.guard_margin_m = 0.01;
+  p.guard_rate_per_s = 4.0;
+  return p;
+}
+
+namespace {
+
+/// Whether `p`'s switches and additions are those of `q` (gains and rates aside).
+bool sameConfiguration(const ControllerParams& p, const ControllerParams& q) {
+  return p.acceleration == q.acceleration && p.torque == q.torque &&
+         p.dob_time_constant_s == q.dob_time_constant_s && p.dob_limit_mps2 == q.dob_limit_mps2 &&
+         p.k_i_per_s3 == q.k_i_per_s3 && p.integral_limit_mps2 == q.integral_limit_mps2 &&
+         p.clearance_guard == q.clearance_guard && p.guard_margin_m == q.guard_margin_m &&
+         p.guard_rate_per_s == q.guard_rate_per_s;
+}
+
+/// Copies `q`'s switches and additions into `p`.
+void setConfiguration(ControllerParams& p, const ControllerParams& q) {
+  p.acceleration = q.acceleration;
+  p.torque = q.torque;
+  p.dob_time_constant_s = q.dob_time_constant_s;
+  p.dob_limit_mps2 = q.dob_limit_mps2;
+  p.k_i_per_s3 = q.k_i_per_s3;
+  p.integral_limit_mps2 = q.integral_limit_mps2;
+  p.clearance_guard = q.clearance_guard;
+  p.guard_margin_m = q.guard_margin_m;
+  p.guard_rate_per_s = q.guard_rate_per_s;
+}
+
+}  // namespace
+
+std::string configurationName(const ControllerParams& p) {
+  if (sameConfiguration(p, recommendedControllerParams())) return "recommended";
+  std::string name = std::string(toString(p.acceleration)) + ":" + toString(p.torque);
+  if (p.dob_time_constant_s > 0.0) name += "+dob";
+  if (p.k_i_per_s3.any()) name += "+integral";
+  if (p.clearance_guard) name += "+guard";
+  return name;
+}
+
+bool parseConfiguration(const std::string& text, ControllerParams& p) {
+  if (text == "recommended") {
+    setConfiguration(p, recommendedControllerParams());
+    return true;
+  }
+  const auto colon = text.find(':');
+  ControllerParams q;  // the paper's row: no additions
+  if (colon == std::string::npos || !parse(text.substr(0, colon), q.acceleration) ||
+      !parse(text.substr(colon + 1), q.torque)) {
+    return false;
+  }
+  setConfiguration(p, q);
+  return true;
 }
 
 }  // namespace geaware::control

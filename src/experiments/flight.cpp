@@ -62,6 +62,10 @@ const char* controllerFlagName(int bit) noexcept {
       return "roll_pitch_saturated";
     case 6:
       return "thrust_saturated";
+    case 7:
+      return "clearance_guard";
+    case 8:
+      return "integral_held";
     default:
       return "?";
   }
@@ -267,6 +271,10 @@ class FlightLoop {
     if (result_.crash) result_.crash_description = sim::describe(*result_.crash);
     result_.completed = !result_.crash.has_value();
     result_.throttle_faults = plant_.throttleFaults();
+    if (closed_ && s_.controller.clearance_guard) {
+      static_assert(control::kFlagClearanceGuard == (1u << 7));
+      result_.guard_active_s = static_cast<double>(result_.flag_counts[7]) / s_.controller.rate_hz;
+    }
     result_.estimation.eskf = eskf_->counters();
     result_.estimation.height_rmse_m = est_h_.value();
     result_.simulated_s = plant_.state().t_s;

@@ -71,6 +71,10 @@ const std::vector<std::string_view>& flightLogColumns() {
       // the disturbance observer (paper eq. 6), filtered: ã_ext (world), τ̃_ext (body), F̃_G
       "dob_valid", "dob_ax_mps2", "dob_ay_mps2", "dob_az_mps2", "dob_tau_x_Nm", "dob_tau_y_Nm",
       "dob_tau_z_Nm", "dob_f_g",
+      // geaware's additions (docs/controller.md): the residual fed forward, the integral term,
+      // the height aimed at, the guard's bound on the vertical command and whether it acted
+      "dob_ff_x_mps2", "dob_ff_y_mps2", "dob_ff_z_mps2", "int_x_mps2", "int_y_mps2", "int_z_mps2",
+      "z_cmd_m", "guard_az_min_mps2", "guard_active",
       // what `geaware identify flight` reads (docs/identification.md, "Flight log"): the
       // controller-side height, velocity, attitude and rotor telemetry, and the external
       // acceleration ã_ext = R_WB·f_B − z_B·k_T·Σn²/m of the nominal vehicle (unfiltered)
@@ -158,6 +162,11 @@ void CsvFlightLog::onTick(const FlightTick& k) noexcept {
   w.vec3(d.a_ext_W);
   w.vec3(d.tau_ext_B);
   w.num(d.f_g_valid ? d.f_g_ratio : 0.0);
+  w.vec3(out.a_dob_W);
+  w.vec3(out.a_int_W);
+  w.num(out.z_cmd_m);
+  w.num(out.guard_min_accel_z_mps2);
+  w.integer((out.flags & control::kFlagClearanceGuard) != 0 ? 1 : 0);
   // The identification columns.
   w.num(in.height_m);
   w.vec3(in.estimate.v_W);

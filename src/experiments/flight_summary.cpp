@@ -9,7 +9,7 @@
 namespace geaware::experiments {
 
 std::string controllerName(const control::ControllerParams& p) {
-  return std::string(control::toString(p.acceleration)) + ":" + control::toString(p.torque);
+  return control::configurationName(p);
 }
 
 std::string formatFlight(const FlightResult& r) {
@@ -26,6 +26,7 @@ std::string formatFlight(const FlightResult& r) {
     if (n > 0) flags += fmt::format("{}{} {}", flags.empty() ? "" : ", ", controllerFlagName(b), n);
   }
   if (!flags.empty()) s += "controller flags (ticks): " + flags + "\n";
+  if (r.guard_active_s) s += fmt::format("clearance guard active {:.3f} s\n", *r.guard_active_s);
   s += fmt::format("simulated {:.2f} s in {:.3f} s: {:.0f}× real time\n", r.simulated_s, r.wall_s,
                    r.real_time_factor);
   return s;
@@ -52,6 +53,7 @@ io::Json flightJson(const FlightScenario& s, const FlightResult& r) {
     flags[controllerFlagName(b)] = r.flag_counts[static_cast<std::size_t>(b)];
   }
   j["flags"] = std::move(flags);
+  j["guard_active_s"] = r.guard_active_s ? io::Json(*r.guard_active_s) : io::Json(nullptr);
   j["simulated_s"] = r.simulated_s;
   j["wall_s"] = r.wall_s;
   j["real_time_factor"] = r.real_time_factor;

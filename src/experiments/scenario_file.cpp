@@ -149,12 +149,18 @@ FlightScenario parseScenarioYaml(std::string_view yaml_text, const std::string& 
   auto traj_section = root.map("trajectory");
   s.trajectory = readTrajectory(traj_section);
 
-  auto ctrl = root.map("controller");
-  const std::string acc = ctrl.choice("acceleration", {"none", "indi", "neural", "model"});
-  const std::string torque = ctrl.choice("torque", {"none", "model", "indi", "model_indi"});
-  if (!acc.empty()) (void)control::parse(acc, s.controller.acceleration);
-  if (!torque.empty()) (void)control::parse(torque, s.controller.torque);
-  ctrl.rejectUnknownKeys();
+  if (root.valueIs("controller", "recommended")) {
+    // geaware's configuration (docs/controller.md) in place of the two switches.
+    (void)root.text("controller");
+    (void)control::parseConfiguration("recommended", s.controller);
+  } else {
+    auto ctrl = root.map("controller");
+    const std::string acc = ctrl.choice("acceleration", {"none", "indi", "neural", "model"});
+    const std::string torque = ctrl.choice("torque", {"none", "model", "indi", "model_indi"});
+    if (!acc.empty()) (void)control::parse(acc, s.controller.acceleration);
+    if (!torque.empty()) (void)control::parse(torque, s.controller.torque);
+    ctrl.rejectUnknownKeys();
+  }
 
   auto terrain = root.map("terrain");
   s.terrain = readTerrain(terrain, base_dir);

@@ -61,6 +61,20 @@ std::vector<geaware::io::ConfigProblem> problemsOf(const std::string& text) {
   return {};
 }
 
+TEST(ScenarioFile, ControllerRecommendedSelectsGeawaresConfiguration) {
+  const std::string text =
+      replaced(lowText(), "controller:\n  acceleration: model            # none | indi | neural | model\n"
+                          "  torque: model_indi             # none | model | indi | model_indi\n",
+               "controller: recommended\n");
+  const FlightScenario s = parseScenarioYaml(text, "s.yaml", sourceDir() / "config/scenarios");
+  EXPECT_EQ(geaware::control::configurationName(s.controller), "recommended");
+  EXPECT_TRUE(s.controller.clearance_guard);
+  // Any other word is not a controller section.
+  const auto problems = problemsOf(replaced(text, "controller: recommended", "controller: best"));
+  ASSERT_FALSE(problems.empty());
+  EXPECT_EQ(problems[0].key, "controller");
+}
+
 TEST(ScenarioFile, CommittedExamplesLoad) {
   const FlightScenario s = geaware::experiments::loadScenarioFile(sourceDir() / "config/scenarios/lemniscate_low.yaml");
   EXPECT_EQ(s.seed, 1u);

@@ -21,11 +21,18 @@
 // measured speeds, and the yaw command is passed through the lag 1/(1 + s·τ_R),
 // τ_R = J_R·(2π/60)/(2·k_I·n̄), that cancels the lead (1 + s·τ_R) of the rotors' yaw response
 // (the same effect Smeur et al. 2016 model with their G2 term). docs/controller.md.
+// geaware's additions in translation, each off by default and on in `recommended`
+// (recommendedControllerParams(), docs/controller.md): the disturbance observer's residual
+// (ControllerInput::external_accel_W minus the model's F_G and D(h) at the measured height),
+// low-passed and fed forward; integral action on position with anti-windup; and a clearance
+// guard (the reference raised to the landing gear's height plus a margin, and a barrier bound on
+// the vertical command).
 // No allocation and no exceptions in update(); invalid inputs are flagged and never reach the
 // motors as NaN.
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <memory>
 
 #include <Eigen/Core>
@@ -68,6 +75,8 @@ enum ControllerFlag : std::uint32_t {
   kFlagYawSaturated = 1u << 4,       ///< yaw torque reduced to fit the rotor-speed range
   kFlagRollPitchSaturated = 1u << 5, ///< roll/pitch torque reduced to fit
   kFlagThrustSaturated = 1u << 6,    ///< thrust clipped to the rotor-speed range
+  kFlagClearanceGuard = 1u << 7,     ///< the clearance guard raised the height or vertical command
+  kFlagIntegralHeld = 1u << 8,       ///< anti-windup held or clipped the position integral
 };
 
 /// Commands of one update: the throttles and every intermediate for logging.
@@ -84,6 +93,13 @@ struct ControllerOutput {
   Eigen::Vector3d tau_hat_B = Eigen::Vector3d::Zero();           ///< filtered τ̂_B from rotor speeds [N·m]
   Eigen::Vector4d n_des_rpm = Eigen::Vector4d::Zero();           ///< rotor-speed command [rpm]
   double height_used_m = 0.0;                                    ///< height the ground-effect models used [m]
+  Eigen::Vector3d a_dob_W = Eigen::Vector3d::Zero();  ///< disturbance residual fed forward (subtracted) [m/s²]
+  Eigen::Vector3d a_int_W = Eigen::Vector3d::Zero();  ///< integral term K^I·∫e_p (added) [m/s²]
+  /// The clearance guard's lower bound on the commanded vertical acceleration
+  /// (a_ref + K^P·e_p + K^V·e_v + K^I·∫e_p), −∞ when the guard is off or has no height [m/s²].
+  double guard_min_accel_z_mps2 = -std::numeric_limits<double>::infinity();
+  /// The height the position loop aimed at: the reference's, raised to the guard's floor [m].
+  double z_cmd_m = 0.0;
   std::uint32_t flags = kFlagNone;                               ///< ControllerFlag bits
 };
 
@@ -120,11 +136,30 @@ class Controller {
   [[nodiscard]] double modelHeight(const ControllerInput& in, std::uint32_t& flags) noexcept;
   /// Advances every filter by one tick (they stay in step whatever the configuration).
   [[nodiscard]] Measured measure(const ControllerInput& in, const Eigen::Matrix3d& R) noexcept;
-  /// The desired specific thrust vector f_cmd (paper eq. 31 with the configured compensation);
-  /// `a_des` gets the acceleration command. Tilt-limited, flagged in `flags`.
+  /// geaware's additions in translation for one tick (all zero/inactive when switched off).
+  struct Additions {
+    traj::FlatOutput reference;  ///< the position loop's reference (raised to the guard's floor)
+    Eigen::Vector3d a_int = Eigen::Vector3d::Zero();  ///< K^I·∫e_p [m/s²]
+    Eigen::Vector3d a_dob = Eigen::Vector3d::Zero();  ///< low-passed DOB residual [m/s²]
+    double a_z_min = -std::numeric_limits<double>::infinity();  ///< guard's bound [m/s²]
+  };
+  /// The guarded reference, the position integral (with anti-windup) and the disturbance
+  /// residual of this tick; advances their states.
+  [[nodiscard]] Additions additions(const ControllerInput& in, double thrust_ref_N,
+                                    const Eigen::Matrix3d& R, std::uint32_t& flags) noexcept;
+  /// The low-passed residual of the disturbance observer against the model's terms (F_G at the
+  /// measured height with the reference thrust `thrust_ref_N`, drag at the estimated velocity).
+  [[nodiscard]] Eigen::Vector3d disturbanceResidual(const ControllerInput& in, double thrust_ref_N,
+                                                    const Eigen::Matrix3d& R) noexcept;
+  /// K^I·∫e_p after this tick's integration, held against the saturations of the last tick.
+  [[nodiscard]] Eigen::Vector3d integralTerm(const Eigen::Vector3d& e_p,
+                                             std::uint32_t& flags) noexcept;
+  /// The desired specific thrust vector f_cmd (paper eq. 31 with the configured compensation
+  /// and the additions); `a_des` gets the acceleration command. Tilt-limited, flagged in `flags`.
   [[nodiscard]] Eigen::Vector3d thrustVectorCommand(const ControllerInput& in,
                                                     const flatness::FlatState& ref, double h,
-                                                    const Measured& m, Eigen::Vector3d& a_des,
+                                                    const Measured& m, const Additions& x,
+                                                    Eigen::Vector3d& a_des,
                                                     std::uint32_t& flags) const;
   /// The yaw torque to allocate: `tau_z` lagged against the rotors' J_R·ṅ lead.
   [[nodiscard]] double allocatedYawTorque(const ControllerInput& in, double tau_z) noexcept;
@@ -164,6 +199,12 @@ class Controller {
   bool have_last_n_ = false;
   double yaw_torque_lagged_Nm_ = 0.0;
   bool have_yaw_lag_ = false;
+  // geaware's additions: the landing gear's rotor-plane height, the low-passed DOB residual, the
+  // position integral and the previous tick's flags (anti-windup).
+  double min_rotor_plane_height_m_;
+  Eigen::Vector3d dob_residual_mps2_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d position_integral_ms_ = Eigen::Vector3d::Zero();  // ∫e_p dt [m·s]
+  std::uint32_t last_flags_ = kFlagNone;
 };
 
 }  // namespace geaware::control

@@ -63,8 +63,48 @@ struct ControllerParams {
   /// desired state". kMeasured only to reproduce a controller that uses the ranger height.
   GroundEffectHeight ground_effect_height = GroundEffectHeight::kReference;
 
+  // geaware's additions in translation (docs/controller.md). Each default switches it off, which
+  // is the paper's controller exactly; recommendedControllerParams() switches them on.
+
+  /// τ_d, time constant of the first-order low-pass on the disturbance observer's residual (its
+  /// ã_ext minus the model's F_G and D(h) at the measured height), fed forward in the
+  /// acceleration command; 0: off. Acceleration `model` or `none` only [s].
+  double dob_time_constant_s = 0.0;
+  double dob_limit_mps2 = 3.0;  ///< bound on each component of the fed-forward residual [m/s²]
+  /// K^I, gain on the integral of the position error; 0: off. Below K^P·K^V per axis [1/s³].
+  Eigen::Vector3d k_i_per_s3 = Eigen::Vector3d::Zero();
+  /// Anti-windup: bound on each component of K^I·∫e_p; the integral is also held while a
+  /// saturation (tilt, thrust, the clearance guard) acts in the direction it would grow [m/s²].
+  double integral_limit_mps2 = 1.0;
+  /// Clearance guard: the commanded height and vertical acceleration never take the rotor plane
+  /// below the landing gear's height (VehicleParams::min_rotor_plane_height_m) plus the margin.
+  bool clearance_guard = false;
+  double guard_margin_m = 0.01;   ///< clearance kept above the landing gear's height [m]
+  /// α of the barrier ḣ + α·(h − h_min) ≥ 0: the guard's lower bound on the commanded vertical
+  /// acceleration is −2α·ḣ − α²·(h − h_min) [1/s].
+  double guard_rate_per_s = 4.0;
+
+  /// Whether any of geaware's additions is on.
+  [[nodiscard]] bool hasAdditions() const noexcept;
+
   /// Every offending field with its value and expectation; empty when usable.
   [[nodiscard]] std::vector<model::FieldError> validate() const;
 };
+
+/// geaware's recommended configuration (`--controller recommended`, docs/controller.md): the
+/// best ACC:TORQUE pair, model:model_indi (F_G, D(h) and J'(h) fed forward, model + INDI
+/// torque), with the disturbance observer's residual fed forward, integral action on position
+/// with anti-windup and the clearance guard. Later work that improves the controller changes
+/// this function, and the tables that use it are re-run.
+[[nodiscard]] ControllerParams recommendedControllerParams();
+
+/// The name of a configuration: "recommended" when `p` has recommendedControllerParams()'s
+/// switches and additions; otherwise "ACC:TORQUE", followed by "+dob", "+integral", "+guard"
+/// for each addition that is on.
+[[nodiscard]] std::string configurationName(const ControllerParams& p);
+
+/// Parses "recommended" or "ACC:TORQUE" into `p` (the switches and additions only; gains and
+/// rates keep their values); false when malformed.
+[[nodiscard]] bool parseConfiguration(const std::string& text, ControllerParams& p);
 
 }  // namespace geaware::control

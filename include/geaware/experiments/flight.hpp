@@ -148,8 +148,8 @@ enum class ScenarioStage {
                                                     ScenarioStage stage = ScenarioStage::kFlight);
 
 /// Number of controller flag bits (control::ControllerFlag) counted by the runner.
-inline constexpr int kControllerFlagBits = 7;
-/// Name of flag bit i ("non_finite_input", "height_invalid", …), "?" outside [0, 7).
+inline constexpr int kControllerFlagBits = 9;
+/// Name of flag bit i ("non_finite_input", "height_invalid", …), "?" outside [0, 9).
 [[nodiscard]] const char* controllerFlagName(int bit) noexcept;
 
 /// Angle error E(h) of one height bin: the angle of the rotation between the controller's
@@ -189,6 +189,9 @@ struct FlightResult {
   std::uint64_t controller_updates = 0;  ///< ticks on which the controller ran
   std::array<std::uint64_t, kControllerFlagBits> flag_counts{};  ///< ticks with each flag set
   long throttle_faults = 0;  ///< non-finite throttles the plant replaced (expect 0)
+  /// Time the clearance guard was active (controller ticks with kFlagClearanceGuard over the
+  /// whole flight, start hover included); empty when the controller has no guard [s].
+  std::optional<double> guard_active_s;
   EstimationSummary estimation;
   double simulated_s = 0.0;       ///< plant time at the end [s]
   double wall_s = 0.0;            ///< wall time of the loop (not deterministic) [s]

@@ -14,14 +14,15 @@
 
 namespace geaware::experiments {
 
-/// "model:model_indi".
+/// "model:model_indi", or "recommended" (control::configurationName).
 [[nodiscard]] std::string controllerName(const control::ControllerParams& p);
 
 /// The metrics, crash, flags and real-time lines printed after a flight.
 [[nodiscard]] std::string formatFlight(const FlightResult& r);
 
-/// {"rmse_xy_cm", …, "crashed", "crash", "samples", "controller", "seed", "flags", "simulated_s",
-/// "wall_s", "real_time_factor"} (docs/closed-loop.md); NaN as null.
+/// {"rmse_xy_cm", …, "crashed", "crash", "samples", "controller", "seed", "flags",
+/// "guard_active_s" (null without a guard), "simulated_s", "wall_s", "real_time_factor"}
+/// (docs/closed-loop.md); NaN as null.
 [[nodiscard]] io::Json flightJson(const FlightScenario& s, const FlightResult& r);
 
 /// Writes DIR/flight.html (creating DIR) from the flight's series and returns its path: the

@@ -1,0 +1,233 @@
+// geaware's additions to the paper's controller (docs/controller.md): the disturbance observer's
+// residual fed forward, the position integral with anti-windup, the clearance guard, and the
+// `recommended` configuration's name. Closed forms on the controller alone.
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "geaware/control/controller.hpp"
+#include "geaware/model/units.hpp"
+#include "geaware_test/eigen_matchers.hpp"
+#include "geaware_test/paper_vehicle.hpp"
+
+namespace {
+
+using namespace geaware::control;
+using geaware::model::kGravity;
+using geaware_test::paperVehicle;
+
+constexpr double kDt = 1.0 / 200.0;
+
+/// Level hover at height h on the reference, rotor speeds at the hover speed.
+ControllerInput hoverInput(double h) {
+  ControllerInput in;
+  in.reference.p_W = Eigen::Vector3d(0.0, 0.0, h);
+  in.estimate.p_W = in.reference.p_W;
+  in.accel_B = Eigen::Vector3d(0.0, 0.0, kGravity);
+  in.height_m = h;
+  in.height_valid = true;
+  in.rotor_speeds_rpm.setConstant(paperVehicle().hoverSpeedRpm(h));
+  return in;
+}
+
+ControllerParams only(AccelerationCompensation acc) {
+  ControllerParams p;
+  p.acceleration = acc;
+  p.torque = TorqueCompensation::kNone;
+  return p;
+}
+
+TEST(ControllerDisturbanceFeedForward, ConvergesToAConstantDisturbanceWithItsTimeConstant) {
+  // A constant ã_ext = d far from the ground (F_G(100 m) ≈ 7e-7, at rest no drag): the residual
+  // fed forward is the backward-Euler low-pass of d, r_k = d·(1 − (τ/(τ + Δt))^k), and the
+  // acceleration command takes it off: a_des = −r_k on the reference.
+  ControllerParams p = only(AccelerationCompensation::kModel);
+  p.dob_time_constant_s = 0.1;
+  Controller c(paperVehicle(), p);
+  const Eigen::Vector3d d(0.3, -0.2, -0.1 * kGravity);
+  ControllerInput in = hoverInput(100.0);
+  in.external_accel_W = d;
+  in.external_accel_valid = true;
+  const double rho = p.dob_time_constant_s / (p.dob_time_constant_s + kDt);
+  for (int k = 1; k <= 200; ++k) {
+    const ControllerOutput out = c.update(in);
+    const Eigen::Vector3d expected = d * (1.0 - std::pow(rho, k));
+    ASSERT_MATRIX_NEAR(out.a_dob_W, expected, 1e-5) << "tick " << k;
+    ASSERT_MATRIX_NEAR(out.a_des_W, -expected, 1e-5) << "tick " << k;
+    // One time constant (20 ticks): 1 − (1 + Δt/τ)^−20 = 0.623 of d (continuous: 1 − 1/e).
+    if (k == 20) {
+      EXPECT_NEAR(out.a_dob_W.z() / d.z(), 0.623, 0.001);
+    }
+  }
+  // Without an estimate the residual is held, not decayed.
+  in.external_accel_valid = false;
+  const ControllerOutput held = c.update(in);
+  EXPECT_MATRIX_NEAR(held.a_dob_W, d * (1.0 - std::pow(rho, 200)), 1e-5);
+}
+
+TEST(ControllerDisturbanceFeedForward, FeedsForwardOnlyWhatTheModelDoesNotExplain) {
+  // At 0.12 m the observer sees the ground's extra thrust F_G·T/m; the model explains it, so the
+  // residual is zero and the command is the paper's.
+  ControllerParams p = only(AccelerationCompensation::kModel);
+  ControllerParams with = p;
+  with.dob_time_constant_s = 0.1;
+  Controller paper(paperVehicle(), p);
+  Controller dob(paperVehicle(), with);
+  const double h = 0.12;
+  ControllerInput in = hoverInput(h);
+  const auto& ge = paperVehicle().groundEffect();
+  const double f_g = ge.thrustRatio(h);
+  in.external_accel_W = Eigen::Vector3d(0.0, 0.0, kGravity * f_g / (1.0 + f_g));
+  in.external_accel_valid = true;
+  ControllerOutput a, b;
+  for (int k = 0; k < 100; ++k) {
+    a = paper.update(in);
+    b = dob.update(in);
+  }
+  EXPECT_MATRIX_NEAR(b.a_dob_W, Eigen::Vector3d::Zero(), 1e-6);
+  EXPECT_NEAR(b.thrust_des_N, a.thrust_des_N, 1e-5);
+}
+
+TEST(ControllerIntegral, IsBoundedUnderSaturationAndUnwindsInBoundedTime) {
+  ControllerParams p = only(AccelerationCompensation::kNone);
+  p.k_i_per_s3 = Eigen::Vector3d::Constant(1.0);
+  p.integral_limit_mps2 = 1.0;
+  Controller c(paperVehicle(), p);
+  // 5 m behind in x (the tilt limit cuts the command) and 2 m low, for 10 s.
+  ControllerInput in = hoverInput(2.0);
+  in.reference.p_W += Eigen::Vector3d(5.0, 0.0, 2.0);
+  bool tilt_limited = false;
+  bool held = false;
+  for (int k = 0; k < 2000; ++k) {
+    const ControllerOutput out = c.update(in);
+    tilt_limited |= (out.flags & kFlagTiltLimited) != 0;
+    held |= (out.flags & kFlagIntegralHeld) != 0;
+    ASSERT_LE(out.a_int_W.cwiseAbs().maxCoeff(), p.integral_limit_mps2 + 1e-12) << "tick " << k;
+    // x: held while the tilt limit acts (it grew on the first tick only).
+    ASSERT_LE(out.a_int_W.x(), 2.0 * p.k_i_per_s3.x() * 5.0 * kDt) << "tick " << k;
+  }
+  EXPECT_TRUE(tilt_limited);
+  EXPECT_TRUE(held);
+  // z wound up to its bound; the error reversed, it unwinds at K^I·|e| per second: from 1 m/s²
+  // with e = −2 m it crosses zero within 0.5 s (+ one tick).
+  ControllerOutput out = c.update(in);
+  ASSERT_NEAR(out.a_int_W.z(), p.integral_limit_mps2, 1e-12);
+  in.reference.p_W = in.estimate.p_W - Eigen::Vector3d(0.0, 0.0, 2.0);
+  int ticks = 0;
+  while (out.a_int_W.z() > 0.0 && ticks < 1000) {
+    out = c.update(in);
+    ++ticks;
+  }
+  EXPECT_LE(ticks, 101);
+}
+
+/// Guard-only controller: no feed-forward, so a_des is the guarded feedback command itself.
+Controller guardOnly(double rate_per_s = 4.0) {
+  ControllerParams p = only(AccelerationCompensation::kNone);
+  p.clearance_guard = true;
+  p.guard_margin_m = 0.01;
+  p.guard_rate_per_s = rate_per_s;
+  return Controller(paperVehicle(), p);
+}
+
+TEST(ControllerClearanceGuard, TheCommandNeverGoesBelowTheClearance) {
+  const double h_min = paperVehicle().params().min_rotor_plane_height_m + 0.01;
+  const double a = 4.0;
+  // A reference 1 m under the ground, diving: from every state the commanded height is the
+  // floor and the vertical command respects the barrier's bound.
+  for (double h : {0.06, 0.082, 0.1, 0.2, 0.5}) {
+    for (double v : {-2.0, -0.5, 0.0, 0.5}) {
+      Controller c = guardOnly(a);
+      ControllerInput in = hoverInput(h);
+      in.estimate.v_W.z() = v;
+      in.reference.p_W.z() = -1.0;
+      in.reference.v_W.z() = -3.0;
+      in.reference.a_W.z() = -5.0;
+      const ControllerOutput out = c.update(in);
+      SCOPED_TRACE("h = " + std::to_string(h) + " m, v = " + std::to_string(v) + " m/s");
+      EXPECT_NEAR(out.z_cmd_m, h_min, 1e-12);
+      EXPECT_TRUE(out.flags & kFlagClearanceGuard);
+      const double bound = -2.0 * a * v - a * a * (h - h_min);
+      EXPECT_NEAR(out.guard_min_accel_z_mps2, bound, 1e-12);
+      EXPECT_GE(out.a_des_W.z(), bound - 1e-12);
+      if (h <= h_min && v <= 0.0) {
+        EXPECT_GE(out.a_des_W.z(), 0.0);
+      }
+    }
+  }
+}
+
+TEST(ControllerClearanceGuard, KeepsAPointMassThatFollowsItsCommandAboveTheClearance) {
+  // The invariance argument on a point mass that follows the vertical command exactly
+  // (ḧ = a_des,z): started above the floor at 2 m/s downwards towards a reference 1 m under the
+  // ground, h never goes below h_min (ψ = ḣ + α·(h − h_min) ≥ 0 at the start).
+  const double h_min = paperVehicle().params().min_rotor_plane_height_m + 0.01;
+  Controller c = guardOnly(4.0);
+  double h = 0.7;
+  double v = -2.0;
+  double lowest = h;
+  for (int k = 0; k < 1000; ++k) {
+    ControllerInput in = hoverInput(h);
+    in.estimate.v_W.z() = v;
+    in.reference.p_W.z() = -1.0;
+    const ControllerOutput out = c.update(in);
+    const double acc = out.a_des_W.z();
+    h += v * kDt + 0.5 * acc * kDt * kDt;
+    v += acc * kDt;
+    lowest = std::min(lowest, h);
+  }
+  EXPECT_GE(lowest, h_min - 1e-3);
+  EXPECT_NEAR(h, h_min, 1e-3);
+}
+
+TEST(ControllerClearanceGuard, StaysOutOfTheWayAtTheReference) {
+  // Hovering on a 0.12 m reference the guard does nothing.
+  Controller c = guardOnly();
+  const ControllerOutput out = c.update(hoverInput(0.12));
+  EXPECT_FALSE(out.flags & kFlagClearanceGuard);
+  EXPECT_NEAR(out.z_cmd_m, 0.12, 1e-15);
+  EXPECT_LT(out.guard_min_accel_z_mps2, out.a_des_W.z());
+}
+
+TEST(RecommendedConfiguration, IsModelModelIndiWithTheAdditionsAndParsesByName) {
+  const ControllerParams r = recommendedControllerParams();
+  EXPECT_EQ(r.acceleration, AccelerationCompensation::kModel);
+  EXPECT_EQ(r.torque, TorqueCompensation::kModelIndi);
+  EXPECT_TRUE(r.hasAdditions());
+  EXPECT_TRUE(r.validate().empty());
+  EXPECT_EQ(configurationName(r), "recommended");
+  ControllerParams p;
+  ASSERT_TRUE(parseConfiguration("recommended", p));
+  EXPECT_EQ(configurationName(p), "recommended");
+  EXPECT_EQ(p.dob_time_constant_s, r.dob_time_constant_s);
+  // An ACC:TORQUE pair is the paper's row: no additions.
+  ASSERT_TRUE(parseConfiguration("model:model_indi", p));
+  EXPECT_FALSE(p.hasAdditions());
+  EXPECT_EQ(configurationName(p), "model:model_indi");
+  p.clearance_guard = true;
+  EXPECT_EQ(configurationName(p), "model:model_indi+guard");
+  EXPECT_FALSE(parseConfiguration("recommend", p));
+  EXPECT_FALSE(parseConfiguration("model", p));
+}
+
+TEST(RecommendedConfiguration, ValidateNamesTheAdditionsOutOfRange) {
+  ControllerParams p = recommendedControllerParams();
+  p.k_i_per_s3.x() = 8.0;  // K^P·K^V = 7.5: the third-order loop would be unstable
+  p.guard_rate_per_s = 0.0;
+  p.dob_limit_mps2 = -1.0;
+  const auto errors = p.validate();
+  ASSERT_EQ(errors.size(), 3u);
+  EXPECT_EQ(errors[0].field, "dob_limit_mps2");
+  EXPECT_EQ(errors[1].field, "k_i_per_s3.x");
+  EXPECT_NE(errors[1].expected.find("Routh"), std::string::npos);
+  EXPECT_EQ(errors[2].field, "guard_rate_per_s");
+  ControllerParams indi = recommendedControllerParams();
+  indi.acceleration = AccelerationCompensation::kIndi;
+  const auto e2 = indi.validate();
+  ASSERT_EQ(e2.size(), 1u);
+  EXPECT_EQ(e2[0].field, "dob_time_constant_s");
+}
+
+}  // namespace
