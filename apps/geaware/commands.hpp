@@ -41,6 +41,12 @@ CLI::Option* addVehicleOption(CLI::App* cmd, std::string& path,
                               const std::string& what = "vehicle YAML file (default: the built-in "
                                                         "paper quadrotor)");
 
+/// `--truth FILE` on `cmd`: a truth file (docs/truth-file.md; a vehicle file is one) or the
+/// name of a built-in world (io::builtinTruthNames); `what` says what it replaces here.
+CLI::Option* addTruthOption(CLI::App* cmd, std::string& reference, const std::string& what);
+/// The file behind a --truth reference, for the provenance; empty for a built-in name.
+[[nodiscard]] std::string truthInputFile(const std::string& reference);
+
 /// `geaware model`: the controller-side ground-effect model tabulated over heights.
 Runner addModelCommand(CLI::App& app);
 /// `geaware fly`: one closed-loop flight (experiments/flight.hpp): the Table I metrics, the

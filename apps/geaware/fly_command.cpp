@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,8 @@
 #include "geaware/experiments/flight_setup.hpp"
 #include "geaware/experiments/flight_summary.hpp"
 #include "geaware/experiments/scenario_file.hpp"
+#include "geaware/experiments/world_setup.hpp"
+#include "geaware/io/truth_file.hpp"
 #include "geaware/io/vehicle_file.hpp"
 #include "progress.hpp"
 
@@ -25,7 +28,7 @@ namespace geaware::cli {
 namespace {
 
 struct FlyOptions {
-  std::string scenario, vehicle, trajectory, controller, out, json, report, neural_weights;
+  std::string scenario, vehicle, truth, trajectory, controller, out, json, report, neural_weights;
   double height_m = std::nan("");
   double speed_mps = std::nan("");
   double extent_x_m = 1.5;
@@ -71,16 +74,21 @@ experiments::TrajectoryOptions flightPlan(const FlyOptions& o) {
 
 experiments::FlightScenario scenarioOf(const FlyOptions& o) {
   experiments::FlightScenario s;
+  std::optional<sim::World> world;
+  if (!o.truth.empty()) world = io::resolveTruth(o.truth, {});
   if (!o.scenario.empty()) {
     // The scenario file fixes vehicle, trajectory, controller, terrain, disturbances and seed;
-    // the options that would contradict it are refused at parse time.
-    s = experiments::loadScenarioFile(o.scenario);
+    // the options that would contradict it are refused at parse time. --truth replaces its
+    // world.
+    s = experiments::loadScenarioFile(o.scenario, world ? &*world : nullptr);
   } else {
     s.vehicle = o.vehicle.empty() ? io::builtinVehicle() : io::loadVehicleFile(o.vehicle);
+    experiments::applyWorld(
+        s, world ? *world : experiments::defaultWorld(s.vehicle, o.vehicle.empty(), o.vehicle));
     (void)parseController(o.controller, s.controller);  // checked by kControllerSpec
     s.trajectory = experiments::makeTrajectory(flightPlan(o));
     s.seed = o.seed;
-    s.disturbances.turbulence = !o.no_turbulence;
+    if (o.no_turbulence) s.disturbances.turbulence = false;
   }
   if (std::isfinite(o.yaw_rate_gain)) s.controller.k_w_per_s.z() = o.yaw_rate_gain;
   s.start_hover_s = o.start_hover_s;
@@ -109,7 +117,8 @@ std::string title(const FlyOptions& o, const experiments::FlightScenario& s) {
 
 int runFly(const FlyOptions& o) {
   const experiments::FlightScenario s = scenarioOf(o);
-  const io::RunInfo run = runInfo({s.seed}, {o.scenario, o.vehicle, o.neural_weights});
+  const io::RunInfo run =
+      runInfo({s.seed}, {o.scenario, o.vehicle, truthInputFile(o.truth), o.neural_weights});
   experiments::ObserverList observers;
   std::unique_ptr<experiments::CsvFlightLog> log;
   if (!o.out.empty()) {
@@ -130,7 +139,8 @@ int runFly(const FlyOptions& o) {
 
   // With --json - the summary goes to stderr, so that stdout is the JSON object alone.
   std::FILE* human = o.json == "-" ? stderr : stdout;
-  std::string variations = o.no_turbulence ? ", no turbulence" : "";
+  std::string variations = o.truth.empty() ? "" : ", truth " + o.truth;
+  if (o.no_turbulence) variations += ", no turbulence";
   if (std::isfinite(o.yaw_rate_gain)) variations += fmt::format(", K^ω_z = {}/s", o.yaw_rate_gain);
   for (const auto& a : o.ablate) variations += ", truth without " + a;
   fmt::print(human, "{}, seed {}{}\n{}", title(o, s), s.seed, variations, experiments::formatFlight(r));
@@ -205,7 +215,12 @@ Runner addFlyCommand(CLI::App& app) {
   auto o = std::make_shared<FlyOptions>();
   auto* cmd = app.add_subcommand(
       "fly", "Fly a trajectory in the simulator in closed loop and report the tracking error");
-  addVehicleOption(cmd, o->vehicle);
+  addVehicleOption(cmd, o->vehicle,
+                   "the vehicle the controller believes in (default: the built-in paper quadrotor)");
+  addTruthOption(cmd, o->truth,
+                 "the world flown in: a truth file (docs/truth-file.md; any vehicle file is one) or a "
+                 "built-in world (ideal); replaces a scenario file's truth (default: the built-in "
+                 "world with the built-in vehicle, the ideal world of --vehicle FILE otherwise)");
   auto* scenario = cmd->add_option("--scenario", o->scenario,
                                    "flight scenario YAML file (docs/scenario-file.md); replaces "
                                    "--vehicle, --trajectory…, --controller, --seed, --no-turbulence")

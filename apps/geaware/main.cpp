@@ -2,12 +2,14 @@
 // problem on stderr and a non-zero exit status (1: bad input or failure, 2: bad usage).
 
 #include <exception>
+#include <filesystem>
 #include <iostream>
 #include <utility>
 
 #include <CLI/CLI.hpp>
 
 #include "commands.hpp"
+#include "geaware/io/truth_file.hpp"
 
 namespace geaware::cli {
 namespace {
@@ -32,6 +34,30 @@ void writeJsonOutput(const std::string& path, io::Json doc, const io::RunInfo& r
 
 CLI::Option* addVehicleOption(CLI::App* cmd, std::string& path, const std::string& what) {
   return cmd->add_option("--vehicle", path, what)->check(CLI::ExistingFile);
+}
+
+CLI::Option* addTruthOption(CLI::App* cmd, std::string& reference, const std::string& what) {
+  const CLI::Validator truth_reference(
+      [](std::string& text) -> std::string {
+        for (const auto& name : io::builtinTruthNames()) {
+          if (text == name) return {};
+        }
+        std::error_code ec;
+        if (std::filesystem::is_regular_file(text, ec)) return {};
+        std::string names;
+        for (const auto& name : io::builtinTruthNames()) names += (names.empty() ? "" : ", ") + name;
+        return "--truth '" + text + "': no such truth file (expected a truth or vehicle YAML file, or a built-in world: " +
+               names + ")";
+      },
+      "FILE");
+  return cmd->add_option("--truth", reference, what)->check(truth_reference);
+}
+
+std::string truthInputFile(const std::string& reference) {
+  for (const auto& name : io::builtinTruthNames()) {
+    if (reference == name) return {};
+  }
+  return reference;
 }
 
 }  // namespace geaware::cli

@@ -20,13 +20,15 @@
 #include "geaware/io/json.hpp"
 #include "geaware/io/provenance.hpp"
 #include "geaware/io/range.hpp"
+#include "geaware/io/truth_file.hpp"
 #include "geaware/io/vehicle_file.hpp"
 
 namespace geaware::cli {
 namespace {
 
 struct RigOptions {
-  std::string vehicle;
+  std::string truth;
+  std::string vehicle;  ///< the replaced --vehicle (an error saying so)
   std::string out;
   std::string report;
   std::uint64_t seed = 1;
@@ -48,8 +50,14 @@ struct RigOptions {
   std::string json;
 };
 
-model::VehicleParams loadVehicle(const std::string& path) {
-  return path.empty() ? io::builtinVehicle() : io::loadVehicleFile(path);
+/// The world the rigs run on: --truth, or the ideal world of the built-in vehicle.
+sim::World loadWorld(const RigOptions& o) {
+  if (!o.vehicle.empty()) {
+    throw UsageError("rig: --vehicle is now --truth FILE (a vehicle file is a valid truth file: "
+                     "its ideal world; docs/truth-file.md)");
+  }
+  return o.truth.empty() ? sim::idealWorld(io::builtinVehicle(), "<built-in paper_quad>")
+                         : io::resolveTruth(o.truth, {});
 }
 
 /// Progress on stderr for long sweeps: at most about twice a second, only when it takes a while.
@@ -86,7 +94,7 @@ std::string producedBy() { return "Produced by: " + commandLine(); }
 // ---------------------------------------------------------------------------------------------
 
 int runPlatform(const RigOptions& o) {
-  const model::VehicleParams vehicle = loadVehicle(o.vehicle);
+  const sim::World world = loadWorld(o);
   experiments::PlatformRigRun run;
   run.sweep.heights_m = io::parseRange(o.heights, "--heights").values();
   run.sweep.tilts_deg = io::parseRange(o.tilts, "--tilts-deg").values();
@@ -109,7 +117,7 @@ int runPlatform(const RigOptions& o) {
                             "fz_N", "tx_Nm", "ty_Nm", "tz_Nm"});
   Progress progress("rig platform");
   const auto result = experiments::runPlatformRig(
-      vehicle, run,
+      world.truth, run,
       [&](const sim::PlatformRow& r) {
         csv.row({r.t_s, r.h_m, r.tilt_deg, r.n_rpm[0], r.n_rpm[1], r.n_rpm[2], r.n_rpm[3], r.force_B.x(),
                  r.force_B.y(), r.force_B.z(), r.torque_B.x(), r.torque_B.y(), r.torque_B.z()});
@@ -124,14 +132,14 @@ int runPlatform(const RigOptions& o) {
 }
 
 int runRotor(const RigOptions& o) {
-  const model::VehicleParams vehicle = loadVehicle(o.vehicle);
+  const sim::World world = loadWorld(o);
   sim::RotorStandParams sp;
   sp.hold_s = o.hold_s;
   sp.sample_period_s = o.sample_period_s;
   const std::vector<double> throttles = io::parseRange(o.throttle, "--throttle").values();
   io::CsvWriter csv(o.out, {"t_s", "throttle", "rpm", "thrust_N", "torque_Nm"});
   const auto result = experiments::runRotorRig(
-      vehicle, sp, throttles, o.seed,
+      experiments::rotorStandVehicle(world.vehicle, world.truth), sp, throttles, o.seed,
       [&](const sim::RotorStandRow& r) { csv.row({r.t_s, r.throttle, r.rpm, r.thrust_N, r.torque_Nm}); },
       !o.report.empty());
   csv.close();
@@ -143,18 +151,19 @@ int runRotor(const RigOptions& o) {
 }
 
 int runCalibrate(const RigOptions& o) {
-  const model::VehicleParams vehicle = loadVehicle(o.vehicle);
-  const sim::CalibrationResult res = sim::calibrate(vehicle, sim::RotorAeroParams{});
+  const sim::World world = loadWorld(o);
+  const sim::CalibrationResult res = sim::calibrate(world.vehicle, world.truth.aero);
   // Human text on stdout, unless stdout carries the JSON.
-  (o.json == "-" ? std::cerr : std::cout) << experiments::calibrationText(res, vehicle.name);
+  (o.json == "-" ? std::cerr : std::cout) << experiments::calibrationText(res, world.vehicle.name);
   if (!o.json.empty()) {
     io::Json doc{{"all_pass", res.allPass()}, {"checks", io::Json::array()}};
     for (const auto& c : res.checks) {
       doc["checks"].push_back({{"name", c.name}, {"unit", c.unit}, {"paper", c.paper}, {"ours", c.ours},
                                {"tolerance", c.tolerance}, {"pass", c.pass}});
     }
+    const std::string truth_file = truthInputFile(o.truth);
     doc["provenance"] = io::provenanceJson(
-        {commandLine(), {}, o.vehicle.empty() ? std::vector<std::string>{} : std::vector<std::string>{o.vehicle}});
+        {commandLine(), {}, truth_file.empty() ? std::vector<std::string>{} : std::vector<std::string>{truth_file}});
     io::writeJson(o.json, doc);
   }
   if (!o.report.empty()) {
@@ -175,7 +184,12 @@ Runner addRigCommand(CLI::App& app) {
   auto runner = std::make_shared<Runner>();
 
   const auto common = [&opts](CLI::App* cmd) {
-    addVehicleOption(cmd, opts->vehicle);
+    addTruthOption(cmd, opts->truth,
+                   "the world whose rotors the rig holds: a truth file (docs/truth-file.md; any "
+                   "vehicle file is one: its ideal world) or a built-in world (ideal) (default: the "
+                   "ideal world of the built-in paper quadrotor)");
+    // Replaced by --truth: kept, hidden, to say so.
+    cmd->add_option("--vehicle", opts->vehicle)->group("");
   };
 
   auto* platform = rig->add_subcommand(

@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "geaware/experiments/rig_runs.hpp"
 #include "geaware/ident/identify.hpp"
 #include "geaware/model/field_check.hpp"
 #include "geaware/model/ground_effect.hpp"
@@ -40,17 +41,6 @@ std::size_t appendSweep(const sim::ForceTorquePlatform& rig, const sim::Platform
       log.tau_Nm[static_cast<std::size_t>(a)].push_back(r.torque_B[a]);
     }
   });
-}
-
-/// The stand holds rotor 1 of the truth: its k_T, k_I (with their spreads), J_R and ESC.
-model::VehicleParams standVehicle(const model::VehicleParams& file_vehicle,
-                                  const sim::TruthParams& truth) {
-  model::VehicleParams v = file_vehicle;
-  v.rotor.k_T_N_per_rpm2 = truth.k_T_N_per_rpm2 * truth.thrust_multiplier[0];
-  v.rotor.k_I_Nm_per_rpm2 = truth.k_I_Nm_per_rpm2 * truth.torque_multiplier[0];
-  v.rotor.J_R_kgm2 = truth.motor.J_R_kgm2;
-  v.throttle = truth.motor.throttle;
-  return v;
 }
 
 }  // namespace
@@ -100,7 +90,7 @@ RigLogs runRigs(const model::VehicleParams& file_vehicle, const sim::TruthParams
 
   ident::RotorStandLog& stand_log = logs.stand;
   stand_log.source = "virtual single-rotor stand (campaign calibration)";
-  const sim::RotorStand stand(standVehicle(file_vehicle, truth), sweeps.stand);
+  const sim::RotorStand stand(rotorStandVehicle(file_vehicle, truth), sweeps.stand);
   c.stand_rows = stand.sweep(sweeps.stand_throttles, 40 + sweeps.seed,
                              [&](const sim::RotorStandRow& r) {
                                stand_log.t_s.push_back(r.t_s);

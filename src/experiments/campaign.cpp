@@ -14,7 +14,9 @@
 #include <vector>
 
 #include "geaware/experiments/flight_pool.hpp"
+#include "geaware/experiments/world_setup.hpp"
 #include "geaware/io/json.hpp"
+#include "geaware/io/truth_file.hpp"
 #include "geaware/traj/hover_descent.hpp"
 #include "geaware/traj/lemniscate.hpp"
 
@@ -142,14 +144,13 @@ void summariseFlights(const CampaignOptions& o, const std::vector<std::uint64_t>
   }
 }
 
-/// The scenario every flight starts from: the identified controller vehicle, the truth.
+/// The scenario every flight starts from: the identified controller vehicle, the world.
 FlightScenario baseScenario(const CampaignOptions& o, const CampaignResult& r,
-                            const sim::TruthParams& truth) {
+                            const sim::World& world) {
   FlightScenario base;
   base.vehicle = r.calibration.vehicle;
-  base.truth = truth;
-  base.mismatch = o.mismatch;
-  base.disturbances.turbulence = o.turbulence;
+  applyWorld(base, world);
+  if (!o.turbulence) base.disturbances.turbulence = false;
   base.start_hover_s = o.start_hover_s;
   return base;
 }
@@ -167,19 +168,22 @@ CampaignResult runCampaign(const CampaignOptions& o) {
   r.threads = resolveThreads(o.jobs);
 
   // 1. Calibration on the truth.
-  const sim::TruthParams truth = sim::fromNominal(o.vehicle);
+  const sim::World world = o.world ? *o.world : sim::idealWorld(o.vehicle);
+  const sim::TruthParams& truth = world.truth;
   say("calibration: virtual platform (level, tilted, rpm differences) and rotor stand on the truth");
   auto t0 = Clock::now();
   r.calibration = calibrateController(o.vehicle, truth, o.calibration);
   r.calibration_s = since(t0);
   say(fmt::format("calibration: {} platform + {} stand rows identified in {:.2f} s",
                   r.calibration.platform_rows, r.calibration.stand_rows, r.calibration_s));
-  const FlightScenario base = baseScenario(o, r, truth);
+  const FlightScenario base = baseScenario(o, r, world);
 
   // 2. Neural-Lander, when experiment 3 is flown.
   if (std::find(o.experiments.begin(), o.experiments.end(), 3) != o.experiments.end()) {
     t0 = Clock::now();
-    r.neural = prepareNeuralBaseline(base, o.neural, o.cache_dir, o.jobs, o.progress);
+    NeuralSettings neural = o.neural;
+    neural.world_key = io::truthSectionYaml(world);
+    r.neural = prepareNeuralBaseline(base, neural, o.cache_dir, o.jobs, o.progress);
     r.neural_s = since(t0);
   }
 

@@ -164,6 +164,7 @@ std::string neuralCacheKey(const FlightScenario& base, const NeuralSettings& s) 
   } else {
     k += "mismatch = none\n";
   }
+  if (!s.world_key.empty()) k += "world:\n" + s.world_key;
   const auto& d = base.disturbances;
   k += fmt::format("turbulence = {} {} {} {} {} {} {} {} {} {} {}\n", d.turbulence,
                    num(d.turbulence_params.force_std_N.x()), num(d.turbulence_params.force_std_N.y()),

@@ -15,12 +15,12 @@ void checkPlatformRigRun(const PlatformRigRun& run) {
   }
 }
 
-PlatformRigResult runPlatformRig(const model::VehicleParams& vehicle, const PlatformRigRun& run,
+PlatformRigResult runPlatformRig(const sim::TruthParams& truth, const PlatformRigRun& run,
                                  const std::function<void(const sim::PlatformRow&)>& sink,
                                  const std::function<void(std::size_t, std::size_t)>& progress) {
   checkPlatformRigRun(run);
-  const sim::RotorGeometry geometry = sim::rigGeometry(vehicle);
-  const sim::ForceTorquePlatform platform(geometry, sim::RotorAeroParams{}, run.params);
+  const sim::RotorGeometry geometry = truth.rotorGeometry();
+  const sim::ForceTorquePlatform platform(geometry, truth.aero, run.params);
   double k_sum = 0.0;
   for (double k : geometry.k_T_N_per_rpm2) k_sum += k;
   PlatformRigResult result;
@@ -69,6 +69,16 @@ report::Page platformRigPage(const PlatformMeans& means, const std::string& prod
   if (!thrust.series.empty()) page.addPlot(std::move(thrust));
   if (!torque.series.empty()) page.addPlot(std::move(torque));
   return page;
+}
+
+model::VehicleParams rotorStandVehicle(const model::VehicleParams& file_vehicle,
+                                       const sim::TruthParams& truth) {
+  model::VehicleParams v = file_vehicle;
+  v.rotor.k_T_N_per_rpm2 = truth.k_T_N_per_rpm2 * truth.thrust_multiplier[0];
+  v.rotor.k_I_Nm_per_rpm2 = truth.k_I_Nm_per_rpm2 * truth.torque_multiplier[0];
+  v.rotor.J_R_kgm2 = truth.motor.J_R_kgm2;
+  v.throttle = truth.motor.throttle;
+  return v;
 }
 
 RotorRigResult runRotorRig(const model::VehicleParams& vehicle, const sim::RotorStandParams& params,

@@ -2,10 +2,13 @@
 
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "geaware/io/format_version.hpp"
+#include "geaware/experiments/world_setup.hpp"
 #include "geaware/io/height_map_file.hpp"
+#include "geaware/io/truth_file.hpp"
 #include "geaware/io/vehicle_file.hpp"
 #include "geaware/io/yaml_reader.hpp"
 #include "geaware/model/units.hpp"
@@ -119,7 +122,8 @@ std::shared_ptr<const sim::Terrain> readTerrain(io::MapReader& t, const std::fil
 }  // namespace
 
 FlightScenario parseScenarioYaml(std::string_view yaml_text, const std::string& source,
-                                 const std::filesystem::path& base_dir) {
+                                 const std::filesystem::path& base_dir,
+                                 const sim::World* truth_override) {
   YAML::Node doc;
   try {
     doc = YAML::Load(std::string(yaml_text));
@@ -165,25 +169,42 @@ FlightScenario parseScenarioYaml(std::string_view yaml_text, const std::string& 
   auto terrain = root.map("terrain");
   s.terrain = readTerrain(terrain, base_dir);
 
-  auto dist = root.map("disturbances");
-  s.disturbances.turbulence = dist.boolean("turbulence");
-  s.disturbances.wind_params.mean_W_mps = vec3(dist.fixedNumbers("wind_mps", 3));
-  s.disturbances.wind_params.gust_std_mps = vec3(dist.fixedNumbers("gust_std_mps", 3));
-  s.disturbances.wind = s.disturbances.wind_params.mean_W_mps.norm() > 0.0 ||
-                        s.disturbances.wind_params.gust_std_mps.norm() > 0.0;
-  dist.rejectUnknownKeys();
+  // The world: the scenario's `truth` (a built-in name or a truth file), unless the caller
+  // overrides it (`fly --truth`); none named: the default world (experiments/world_setup.hpp).
+  std::optional<sim::World> world;
+  if (root.has("truth")) {
+    const std::string truth = root.text("truth");
+    if (truth_override == nullptr && !truth.empty()) {
+      try {
+        world = io::resolveTruth(truth, base_dir);
+      } catch (const std::exception& e) {
+        root.problem("truth", std::string("cannot use the truth: ") + e.what());
+      }
+    }
+  }
+  if (truth_override != nullptr) world = *truth_override;
+  if (!world && root.problemCount() == 0) {
+    world = defaultWorld(s.vehicle, vehicle == "builtin", vehicle);
+  }
+  if (world) applyWorld(s, *world);
 
-  auto mis = root.map("truth_mismatch");
-  sim::MismatchSpec m;
-  m.mass_rel = mis.number("mass_rel");
-  m.inertia_rel = mis.number("inertia_rel");
-  m.cog_offset_m = mis.number("cog_offset_m");
-  m.cog_offset_z_m = mis.number("cog_offset_z_m");
-  m.thrust_spread_rel = mis.number("thrust_spread_rel");
-  mis.rejectUnknownKeys();
-  if (m.mass_rel != 0.0 || m.inertia_rel != 0.0 || m.cog_offset_m != 0.0 || m.cog_offset_z_m != 0.0 ||
-      m.thrust_spread_rel != 0.0) {
-    s.mismatch = m;
+  // This flight's disturbances, replacing the world's (optional).
+  if (root.has("disturbances")) {
+    auto dist = root.map("disturbances");
+    s.disturbances.turbulence = dist.boolean("turbulence");
+    s.disturbances.wind_params.mean_W_mps = vec3(dist.fixedNumbers("wind_mps", 3));
+    s.disturbances.wind_params.gust_std_mps = vec3(dist.fixedNumbers("gust_std_mps", 3));
+    s.disturbances.wind = s.disturbances.wind_params.mean_W_mps.norm() > 0.0 ||
+                          s.disturbances.wind_params.gust_std_mps.norm() > 0.0;
+    dist.rejectUnknownKeys();
+  }
+
+  // The per-flight variation is the world's now: one way to describe a world.
+  if (root.has("truth_mismatch")) {
+    (void)root.map("truth_mismatch");
+    root.problem("truth_mismatch",
+                 "moved into the truth file: give 'truth:' a truth file whose section "
+                 "'truth.per_flight_variation' holds these bounds (docs/truth-file.md)");
   }
   root.rejectUnknownKeys();
   if (!ctx.problems.empty()) throw io::ConfigError(source, std::move(ctx.problems));
@@ -198,7 +219,7 @@ FlightScenario parseScenarioYaml(std::string_view yaml_text, const std::string& 
   return s;
 }
 
-FlightScenario loadScenarioFile(const std::filesystem::path& file) {
+FlightScenario loadScenarioFile(const std::filesystem::path& file, const sim::World* truth_override) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec)) {
     throw std::runtime_error(file.string() + (std::filesystem::exists(file, ec)
@@ -208,7 +229,7 @@ FlightScenario loadScenarioFile(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   std::ostringstream text;
   if (!in || !(text << in.rdbuf())) throw std::runtime_error(file.string() + ": cannot read scenario file");
-  return parseScenarioYaml(text.str(), file.string(), file.parent_path());
+  return parseScenarioYaml(text.str(), file.string(), file.parent_path(), truth_override);
 }
 
 }  // namespace geaware::experiments

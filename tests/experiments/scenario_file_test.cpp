@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "geaware/sim/terrains.hpp"
+#include "geaware/sim/world.hpp"
 #include "geaware/traj/lemniscate.hpp"
 
 namespace {
@@ -200,6 +201,54 @@ TEST(ScenarioFile, MissingFilesAreNamed) {
     EXPECT_NE(p[0].message.find("no_such_map.csv"), std::string::npos) << p[0].message;
   }
   EXPECT_THROW((void)geaware::experiments::loadScenarioFile("/nonexistent/scenario.yaml"), std::runtime_error);
+}
+
+// The world of a scenario: `truth:` names a built-in world or a truth file (relative to the
+// scenario), a caller's world (`fly --truth`) replaces it, and the old `truth_mismatch:` is an
+// error that names its new place.
+TEST(ScenarioFile, TruthNamesTheWorld) {
+  const FlightScenario ideal = parseScenarioYaml(lowText(), "s.yaml", sourceDir() / "config/scenarios");
+  ASSERT_TRUE(ideal.truth.has_value());
+  EXPECT_EQ(ideal.truth->mass_kg, 1.696);
+  EXPECT_FALSE(ideal.mismatch.has_value());
+
+  // The table-edge scenario's world varies per flight: its truth file says by how much.
+  const FlightScenario edge = geaware::experiments::loadScenarioFile(sourceDir() / "config/scenarios/table_edge.yaml");
+  ASSERT_TRUE(edge.mismatch.has_value());
+  EXPECT_DOUBLE_EQ(edge.mismatch->thrust_spread_rel, 0.02);
+
+  // A world given by the caller replaces the file's.
+  geaware::sim::World other = geaware::sim::idealWorld(ideal.vehicle, "test");
+  other.truth.cog_offset_B.x() = 0.004;
+  other.sensors.mocap.latency_s = 0.02;
+  const FlightScenario over = parseScenarioYaml(lowText(), "s.yaml", sourceDir() / "config/scenarios", &other);
+  ASSERT_TRUE(over.truth.has_value());
+  EXPECT_EQ(over.truth->cog_offset_B.x(), 0.004);
+  EXPECT_EQ(over.sensors.mocap.latency_s, 0.02);
+
+  // No `truth:`: the default world of the built-in vehicle.
+  const std::string none = replaced(lowText(), "truth: ideal ", "# no truth ");
+  const FlightScenario def = parseScenarioYaml(none, "s.yaml", sourceDir() / "config/scenarios");
+  ASSERT_TRUE(def.truth.has_value());
+  EXPECT_EQ(def.truth->mass_kg, ideal.truth->mass_kg);
+}
+
+TEST(ScenarioFile, ABadTruthIsNamed) {
+  const std::string text = replaced(lowText(), "truth: ideal ", "truth: no_such_world.yaml ");
+  const auto p = problemsOf(text);
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_EQ(p[0].key, "truth");
+  EXPECT_EQ(p[0].line, lineOf(text, "truth:"));
+  EXPECT_NE(p[0].message.find("no_such_world.yaml"), std::string::npos) << p[0].message;
+}
+
+TEST(ScenarioFile, TruthMismatchMovedIntoTheTruthFile) {
+  const std::string text = lowText() + "truth_mismatch:\n  mass_rel: 0.05\n";
+  const auto p = problemsOf(text);
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_EQ(p[0].key, "truth_mismatch");
+  EXPECT_EQ(p[0].line, lineOf(text, "truth_mismatch:"));
+  EXPECT_NE(p[0].message.find("truth.per_flight_variation"), std::string::npos) << p[0].message;
 }
 
 TEST(ScenarioFile, MalformedYamlGivesTheLine) {

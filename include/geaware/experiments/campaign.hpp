@@ -11,8 +11,9 @@
 //      of the issue (text and JSON: experiments/campaign_summary.hpp).
 // The report page is experiments/campaign_report.hpp.
 //
-// Every flight's controller is built from the IDENTIFIED parameters; the truth is the vehicle
-// file's nominal truth (sim::fromNominal), optionally with a seeded per-flight mismatch.
+// Every flight's controller is built from the IDENTIFIED parameters; the truth, its per-flight
+// variation, the sensors and the disturbances are the world's (a truth file, docs/truth-file.md;
+// by default the vehicle file's ideal world, sim::idealWorld).
 
 #include <cstdint>
 #include <filesystem>
@@ -31,31 +32,33 @@
 #include "geaware/experiments/table_one.hpp"
 #include "geaware/model/vehicle_params.hpp"
 #include "geaware/sim/truth_params.hpp"
+#include "geaware/sim/world.hpp"
 
 namespace geaware::experiments {
 
-/// What `--truth-mismatch` draws (per flight, seeded by the flight's seed), for a vehicle whose
-/// mass is weighed and whose inertia and CoG come from CAD: mass ±1 %, each principal moment
-/// ±10 %, CoG ±2 mm in x, y and ±5 mm in z, per-motor thrust ±2 %. (The paper's position loop
-/// has no integrator: 1 % of mass is ≈ 3 cm of height error with K^P = 3 /s².)
+/// The per-flight variation of config/truths/ideal_varied.yaml (once `--truth-mismatch`), for a
+/// vehicle whose mass is weighed and whose inertia and CoG come from CAD: mass ±1 %, each
+/// principal moment ±10 %, CoG ±2 mm in x, y and ±5 mm in z, per-motor thrust ±2 %. (The paper's
+/// position loop has no integrator: 1 % of mass is ≈ 3 cm of height error with K^P = 3 /s².)
 [[nodiscard]] sim::MismatchSpec defaultTruthMismatch();
 
 struct CampaignOptions {
-  /// The vehicle file (nominal): the truth is sim::fromNominal of it; the controller gets it
-  /// with the identified values merged in.
+  /// The vehicle file (nominal): the controller gets it with the identified values merged in.
   model::VehicleParams vehicle;
+  /// The world the rigs and the flights run in (truth, per-flight variation, sensors,
+  /// disturbances); empty: sim::idealWorld(vehicle).
+  std::optional<sim::World> world;
   int seeds = 5;                 ///< flights per experiment and per hover curve
   std::uint64_t first_seed = 1;  ///< seeds first_seed … first_seed + seeds − 1 (all experiments)
   std::vector<int> experiments = {1, 2, 3, 4, 5, 6, 7, 8};  ///< Table I rows to fly
   bool hover = true;             ///< fly the hover experiment
   int jobs = 0;                  ///< flight threads; 0: the hardware's
   std::filesystem::path cache_dir;  ///< Neural-Lander cache; empty: no cache
-  bool turbulence = true;           ///< the truth's near-ground turbulence
+  bool turbulence = true;           ///< false: no near-ground turbulence, whatever the world says
   /// Hover at the first point before every trajectory [s]: the runner starts the truth in its
   /// own hover there, and a controller with an imperfect model needs ≈ 2 s to settle; the
   /// paper's flights start from a settled hover.
   double start_hover_s = 3.0;
-  std::optional<sim::MismatchSpec> mismatch;  ///< per-flight truth mismatch; empty: none
   CalibrationSweeps calibration = CalibrationSweeps::defaults();
   NeuralSettings neural;
   HoverSettings hover_settings;

@@ -44,6 +44,10 @@ struct NeuralSettings {
   std::uint64_t first_seed = 1000;  ///< flight k uses first_seed + k (apart from the table's)
   int tick_stride = 4;              ///< one row every tick_stride active control ticks
   neural::TrainOptions train = defaultTrainOptions();
+  /// The world's `truth:` section as the truth file writes it (io::truthSectionYaml; the
+  /// campaign fills it): part of the cache key, so that any truth-file key (sensors, room air,
+  /// per-motor spread…) changes the key. Empty: not part of the key.
+  std::string world_key;
 
   /// 17 → 32 → 32 → 3, 300 epochs, batch 64, Adam 1e-3, γ = 10 (the ground effect near
   /// 0.1 m needs ≈ 10 N per σ_h, docs/neural-lander.md), seed 1.

@@ -15,10 +15,11 @@
 #include "geaware/model/vehicle_params.hpp"
 #include "geaware/report/page.hpp"
 #include "geaware/sim/rigs.hpp"
+#include "geaware/sim/truth_params.hpp"
 
 namespace geaware::experiments {
 
-/// A platform sweep to run on `vehicle`'s rotor geometry with the default truth aerodynamics.
+/// A platform sweep to run on a truth's rotor geometry and aerodynamics.
 struct PlatformRigRun {
   sim::PlatformSweep sweep;
   sim::PlatformParams params;
@@ -48,7 +49,7 @@ void checkPlatformRigRun(const PlatformRigRun& run);
 
 /// Runs the sweep, handing every row to `sink`; `progress(done, total)` after each setpoint.
 [[nodiscard]] PlatformRigResult runPlatformRig(
-    const model::VehicleParams& vehicle, const PlatformRigRun& run,
+    const sim::TruthParams& truth, const PlatformRigRun& run,
     const std::function<void(const sim::PlatformRow&)>& sink,
     const std::function<void(std::size_t, std::size_t)>& progress = {});
 
@@ -56,7 +57,13 @@ void checkPlatformRigRun(const PlatformRigRun& run);
 /// `produced_by` is the first paragraph (the command that made it).
 [[nodiscard]] report::Page platformRigPage(const PlatformMeans& means, const std::string& produced_by);
 
-/// A stand run: the rows to `sink`; with `collect` the first 500,000 rows are kept for the page.
+/// The vehicle the single-rotor stand mounts: rotor 1 of the truth — its k_T and k_I (with their
+/// spreads), J_R and ESC curve — on `file_vehicle`'s other parameters.
+[[nodiscard]] model::VehicleParams rotorStandVehicle(const model::VehicleParams& file_vehicle,
+                                                     const sim::TruthParams& truth);
+
+/// A stand run on `vehicle` (rotorStandVehicle): the rows to `sink`; with `collect` the first
+/// 500,000 rows are kept for the page.
 struct RotorRigResult {
   std::size_t rows = 0;
   std::vector<sim::RotorStandRow> kept;
