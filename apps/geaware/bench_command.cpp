@@ -124,8 +124,10 @@ Runner addBenchCommand(CLI::App& app) {
       ->check(CLI::Range(1, 1000));
   cmd->add_option("--first-seed", o->first_seed, "seeds are first-seed … first-seed + seeds − 1")
       ->capture_default_str();
-  cmd->add_option("--only", o->only, "fly only these: Table I experiments 1–8 and/or 'hover'")
-      ->check(CLI::IsMember({"1", "2", "3", "4", "5", "6", "7", "8", "hover"}));
+  cmd->add_option("--only", o->only,
+                  "fly only these: Table I experiments 1–8 (the paper's), 9–10 (recommended) "
+                  "and/or 'hover'")
+      ->check(CLI::IsMember({"1", "2", "3", "4", "5", "6", "7", "8", "9", "10", "hover"}));
   cmd->add_option("--jobs", o->jobs, "parallel flights (0: one per core); results do not depend on it")
       ->capture_default_str()
       ->check(CLI::Range(0, 256));

@@ -97,12 +97,12 @@ FlightPlan planFlights(const CampaignOptions& o, const FlightScenario& base,
     for (std::size_t s = 0; s < seeds.size(); ++s) {
       FlightScenario f = base;
       f.trajectory = trajectory;
-      f.controller.acceleration = e.acceleration;
-      f.controller.torque = e.torque;
+      f.controller = e.controller();
       if (e.acceleration == control::AccelerationCompensation::kNeural) f.residual = r.neural->network;
       f.seed = seeds[s];
       plan.add(std::move(f), o.collect_series && s == 0,
-               fmt::format("exp {} ({}) seed {}", number, comboName(e.acceleration, e.torque), seeds[s]));
+               fmt::format("exp {} ({}) seed {}", number, control::configurationName(e.controller()),
+                           seeds[s]));
     }
   }
   if (!o.hover) return plan;

@@ -18,12 +18,12 @@ using plots::trajectoryPart;
 
 /// "ours ± std [paper]" in one cell.
 std::string withPaper(const MeanStd& m, double paper) {
+  if (!std::isfinite(paper)) return fmt::format("{:.2f} ± {:.2f}", m.mean, m.std);
   return fmt::format("{:.2f} ± {:.2f} [{:.2f}]", m.mean, m.std, paper);
 }
 
 std::string label(const TableOneExperiment& e) {
-  return fmt::format("exp {} {}:{}", e.number, control::toString(e.acceleration),
-                     control::toString(e.torque));
+  return fmt::format("exp {} {}", e.number, control::configurationName(e.controller()));
 }
 
 void addTables(report::Page& page, const CampaignResult& r) {
@@ -36,9 +36,7 @@ void addTables(report::Page& page, const CampaignResult& r) {
                     {}};
     for (const auto& e : r.experiments) {
       const auto& x = e.experiment;
-      t.rows.push_back({std::to_string(x.number),
-                        std::string(control::toString(x.acceleration)) + ":" +
-                            control::toString(x.torque),
+      t.rows.push_back({std::to_string(x.number), control::configurationName(x.controller()),
                         fmt::format("{:.2f}", x.height_m), fmt::format("{:g}", x.speed_mps),
                         withPaper(e.rmse_xy_cm, x.paper.rmse_xy_cm),
                         withPaper(e.rmse_z_cm, x.paper.rmse_z_cm),

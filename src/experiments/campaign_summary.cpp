@@ -15,7 +15,14 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::string cell(const MeanStd& m, double paper) {
+  if (!std::isfinite(paper)) return fmt::format("{:6.2f} ±{:5.2f} ({:>5})", m.mean, m.std, "-");
   return fmt::format("{:6.2f} ±{:5.2f} ({:5.2f})", m.mean, m.std, paper);
+}
+
+/// The acc and torque columns of a row (7 + 1 + 11 characters): the pair, or "recommended".
+std::string configurationCells(const TableOneExperiment& x) {
+  if (x.recommended) return fmt::format("{:<19}", "recommended");
+  return fmt::format("{:<7} {:<11}", control::toString(x.acceleration), control::toString(x.torque));
 }
 
 std::string calibrationText(const CampaignResult& r) {
@@ -84,8 +91,8 @@ std::string tableOneText(const CampaignResult& r) {
                      "max ‖E_P‖", "σ‖E_P‖", "crashes");
     for (const auto& e : r.experiments) {
       const auto& x = e.experiment;
-      s += fmt::format("{:>3} {:<7} {:<11} {:>5.2f} {:>4g} | {} | {} | {} | {} | {} | {}\n", x.number,
-                       control::toString(x.acceleration), control::toString(x.torque), x.height_m,
+      s += fmt::format("{:>3} {} {:>5.2f} {:>4g} | {} | {} | {} | {} | {} | {}\n", x.number,
+                       configurationCells(x), x.height_m,
                        x.speed_mps, cell(e.rmse_xy_cm, x.paper.rmse_xy_cm),
                        cell(e.rmse_z_cm, x.paper.rmse_z_cm), cell(e.rmse_all_cm, x.paper.rmse_all_cm),
                        cell(e.max_cm, x.paper.max_cm), cell(e.std_cm, x.paper.std_cm), e.crashes);
@@ -101,6 +108,12 @@ std::string tableOneText(const CampaignResult& r) {
       }
       s += fmt::format("  exp {}: ground strike{} ({}); its metrics are those up to the strike\n",
                        e.experiment.number, e.crashes == 1 ? "" : "s", times);
+    }
+    for (const auto& e : r.experiments) {
+      if (std::isnan(e.guard_active_s)) continue;
+      s += fmt::format("  exp {} ({}): clearance guard active {:.3f} s over its {} flight{}\n",
+                       e.experiment.number, control::configurationName(e.experiment.controller()),
+                       e.guard_active_s, e.seeds.size(), e.seeds.size() == 1 ? "" : "s");
     }
   }
   return s;
@@ -197,15 +210,17 @@ io::Json experimentJson(const ExperimentSummary& e) {
   io::Json j = {{"exp", x.number},
                 {"acc", control::toString(x.acceleration)},
                 {"torque", control::toString(x.torque)},
+                {"controller", control::configurationName(x.controller())},
                 {"height_m", x.height_m},
                 {"speed_mps", x.speed_mps},
                 {"half_extent_x_m", x.half_extent_x_m},
                 {"half_extent_y_m", x.half_extent_y_m}};
   j.update(metricsJson(mean));
   j["crashes"] = e.crashes;
+  j["guard_active_s"] = std::isnan(e.guard_active_s) ? io::Json(nullptr) : io::Json(e.guard_active_s);
   j["seeds"] = e.seeds.size();
   j["std_over_seeds"] = metricsJson(sd);
-  j["paper"] = metricsJson(x.paper);
+  j["paper"] = x.hasPaper() ? metricsJson(x.paper) : io::Json(nullptr);
   io::Json per_seed = io::Json::array();
   for (std::size_t s = 0; s < e.per_seed.size(); ++s) {
     io::Json f = {{"seed", e.seeds[s]}};

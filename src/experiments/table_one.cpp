@@ -10,6 +10,8 @@ namespace geaware::experiments {
 const std::vector<TableOneExperiment>& tableOneExperiments() {
   using A = control::AccelerationCompensation;
   using T = control::TorqueCompensation;
+  constexpr double kN = std::numeric_limits<double>::quiet_NaN();
+  const TableMetrics kNoPaper{kN, kN, kN, kN, kN};
   // docs/paper-facts.md, "Table I: the paper's flights"; cm.
   static const std::vector<TableOneExperiment> kTable = {
       {1, A::kNone, T::kNone, 0.12, 1.0, 1.5, 0.8, {6.54, 8.64, 10.85, 18.04, 2.19}},
@@ -20,15 +22,27 @@ const std::vector<TableOneExperiment>& tableOneExperiments() {
       {6, A::kModel, T::kNone, 0.18, 3.0, 4.0, 1.7, {12.63, 1.71, 12.74, 26.27, 5.36}},
       {7, A::kModel, T::kModelIndi, 0.18, 3.0, 4.0, 1.7, {6.67, 2.84, 6.97, 14.66, 2.72}},
       {8, A::kModel, T::kModelIndi, 1.75, 5.0, 6.0, 2.5, {4.77, 1.41, 4.98, 9.75, 1.64}},
+      // geaware's `recommended` (docs/controller.md) on the flights of exps 1–5 and 6–7.
+      {9, A::kModel, T::kModelIndi, 0.12, 1.0, 1.5, 0.8, kNoPaper, true},
+      {10, A::kModel, T::kModelIndi, 0.18, 3.0, 4.0, 1.7, kNoPaper, true},
   };
   return kTable;
+}
+
+control::ControllerParams TableOneExperiment::controller() const {
+  control::ControllerParams p;
+  if (recommended) return control::recommendedControllerParams();
+  p.acceleration = acceleration;
+  p.torque = torque;
+  return p;
 }
 
 const TableOneExperiment& tableOneExperiment(int number) {
   for (const auto& e : tableOneExperiments()) {
     if (e.number == number) return e;
   }
-  throw std::out_of_range("Table I has experiments 1 to 8, not " + std::to_string(number));
+  throw std::out_of_range("Table I has experiments 1 to 8 (the paper's) and 9, 10 (recommended), not " +
+                          std::to_string(number));
 }
 
 traj::LemniscateParams lemniscateFor(const TableOneExperiment& e) {
@@ -72,6 +86,9 @@ ExperimentSummary summarise(const TableOneExperiment& e, const std::vector<std::
     s.crashed.push_back(f.crash.has_value());
     s.crash_t_s.push_back(f.crash ? f.crash->t_s : std::numeric_limits<double>::quiet_NaN());
     if (f.crash) ++s.crashes;
+    if (f.guard_active_s) {
+      s.guard_active_s = (std::isnan(s.guard_active_s) ? 0.0 : s.guard_active_s) + *f.guard_active_s;
+    }
   }
   s.rmse_xy_cm = meanStd(s.per_seed, &TableMetrics::rmse_xy_cm);
   s.rmse_z_cm = meanStd(s.per_seed, &TableMetrics::rmse_z_cm);

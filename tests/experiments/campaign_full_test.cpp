@@ -1,6 +1,6 @@
 // The full default campaign — what `geaware bench` runs with no options: calibration on the
-// virtual rigs, the Neural-Lander baseline, the eight Table I experiments over 5 seeds and the
-// hover experiment — with the issue's acceptance checks (issue 6, "What it must show").
+// virtual rigs, the Neural-Lander baseline, the eight Table I experiments and geaware's two
+// `recommended` rows over 5 seeds and the hover experiment — with the issue's acceptance checks (issue 6, "What it must show").
 // Labelled `campaign` (≈ 10–15 s on two cores). docs/results.md has the numbers and the analysis
 // of the checks that do not hold; this test asserts the ones that do, and prints every check.
 
@@ -32,7 +32,7 @@ TEST(CampaignFull, TheDefaultCampaignShowsThePapersHeadlineRatios) {
   const CampaignResult r = runCampaign(o);
   std::cout << formatCampaign(r);
 
-  ASSERT_EQ(r.experiments.size(), 8u);
+  ASSERT_EQ(r.experiments.size(), 10u);
   ASSERT_EQ(r.hover.size(), 4u);
   for (const auto& c : r.checks) RecordProperty(c.name, std::to_string(c.value));
 
@@ -45,6 +45,14 @@ TEST(CampaignFull, TheDefaultCampaignShowsThePapersHeadlineRatios) {
   }
   // Exp 8 flies far from the ground: it must never strike it.
   EXPECT_EQ(r.experiment(8)->crashes, 0);
+  // geaware's `recommended` rows (docs/controller.md): no strike, and in the campaign's world
+  // (unperturbed) the clearance guard never acts.
+  for (int row : {9, 10}) {
+    const ExperimentSummary* e = r.experiment(row);
+    ASSERT_NE(e, nullptr);
+    EXPECT_EQ(e->crashes, 0) << "exp " << row;
+    EXPECT_EQ(e->guard_active_s, 0.0) << "exp " << row;
+  }
   // The issue's budget for the whole default campaign on this 2-core machine.
   EXPECT_LE(r.wall_s, 60.0);
 }

@@ -211,7 +211,7 @@ TEST(FlightPool, AFailingFlightIsReportedWithItsLabel) {
 
 TEST(Campaign, BadOptionsAreRefused) {
   CampaignOptions o = reduced(1);
-  o.experiments = {9};
+  o.experiments = {11};
   EXPECT_THROW((void)runCampaign(o), std::out_of_range);
   o.experiments = {1, 1};
   EXPECT_THROW((void)runCampaign(o), std::invalid_argument);

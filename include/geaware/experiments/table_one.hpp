@@ -11,6 +11,7 @@
 //   5 m/s: ±6.0 m × ±2.5 m (9.8 s lap, ≤ 4.5 m/s²)
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "geaware/control/controller_params.hpp"
@@ -29,19 +30,28 @@ struct TableMetrics {
 };
 
 struct TableOneExperiment {
-  int number = 0;  ///< 1…8 as in the paper
+  int number = 0;  ///< 1…8 as in the paper; 9, 10: geaware's `recommended` rows
   control::AccelerationCompensation acceleration = control::AccelerationCompensation::kNone;
   control::TorqueCompensation torque = control::TorqueCompensation::kNone;
   double height_m = 0.0;         ///< rotor-plane height of the lemniscate [m]
   double speed_mps = 0.0;        ///< peak speed [m/s]
   double half_extent_x_m = 0.0;  ///< lemniscate ±A [m]
   double half_extent_y_m = 0.0;  ///< lemniscate ±B [m]
-  TableMetrics paper;            ///< the paper's Table I row (real flights)
+  TableMetrics paper;            ///< the paper's Table I row (real flights); NaN for rows 9, 10
+  /// Fly control::recommendedControllerParams() (acceleration and torque above name the pair it
+  /// stands for) instead of the paper's configuration.
+  bool recommended = false;
+
+  /// Whether the paper flew this row (it has published numbers).
+  [[nodiscard]] bool hasPaper() const noexcept { return !recommended; }
+  /// The configuration flown: control::configurationName ("model:model_indi", "recommended").
+  [[nodiscard]] control::ControllerParams controller() const;
 };
 
-/// The eight experiments, in the paper's order.
+/// The eight experiments, in the paper's order, then geaware's two `recommended` rows: 9 at
+/// 0.12 m / 1 m/s (exps 1–5's flight) and 10 at 0.18 m / 3 m/s (exps 6–7's).
 [[nodiscard]] const std::vector<TableOneExperiment>& tableOneExperiments();
-/// Experiment `number` (1…8); throws std::out_of_range otherwise.
+/// Experiment `number` (1…10); throws std::out_of_range otherwise.
 [[nodiscard]] const TableOneExperiment& tableOneExperiment(int number);
 
 /// The lemniscate of an experiment (one lap, the default ramps).
@@ -64,6 +74,8 @@ struct ExperimentSummary {
   std::vector<double> crash_t_s;       ///< plant time of each seed's strike, NaN if none [s]
   MeanStd rmse_xy_cm, rmse_z_cm, rmse_all_cm, max_cm, std_cm;
   int crashes = 0;
+  /// Time the clearance guard acted, summed over the seeds; NaN for a controller without it [s].
+  double guard_active_s = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Summarises the flights of one experiment (results in the order of `seeds`).
