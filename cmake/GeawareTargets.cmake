@@ -46,6 +46,12 @@ function(geaware_layer layer)
   endforeach()
   target_link_libraries(${target} PUBLIC ${deps} ${ARG_EXTERNAL} PRIVATE ${ARG_PRIVATE_EXTERNAL})
   geaware_defaults(${target})
+  # A layer compiles its files in batches of six (one translation unit each): the standard,
+  # Eigen and fmt headers are parsed once per batch instead of once per file. Helpers private
+  # to one file live in its anonymous namespace, so two files of a layer must not define the
+  # same name there (shared helpers go to a private header, e.g. src/traj/param_text.hpp).
+  set_target_properties(${target} PROPERTIES UNITY_BUILD ${GEAWARE_UNITY_BUILD}
+                                             UNITY_BUILD_BATCH_SIZE 6)
 endfunction()
 
 # geaware_test(<name> SOURCES ... LIBS ...): one GoogleTest executable, registered with CTest.

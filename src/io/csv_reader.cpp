@@ -1,5 +1,7 @@
 #include "geaware/io/csv_reader.hpp"
 
+#include "text.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -20,12 +22,6 @@ std::string formatWhat(const std::string& file, std::size_t line, const std::str
   s += ": ";
   if (!column.empty()) s += "column '" + column + "': ";
   return s + message;
-}
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
-  return s;
 }
 
 std::string number(double v) {
@@ -145,14 +141,15 @@ struct CsvReader::Impl {
     for (;;) {
       const auto line = nextLine();
       if (!line) fail(line_no, "", "no header line (the file is empty)");
-      std::string_view text = trim(*line);
+      std::string_view text = detail::trimBlanks(*line);
       if (line_no == 1 && text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);  // BOM
       if (text.empty() || text.front() == '#') continue;
       // Split the header into names.
       std::size_t pos = 0;
       for (;;) {
         const std::size_t q = text.find(options.delimiter, pos);
-        std::string_view name = trim(text.substr(pos, q == std::string_view::npos ? q : q - pos));
+        std::string_view name =
+            detail::trimBlanks(text.substr(pos, q == std::string_view::npos ? q : q - pos));
         if (name.size() >= 2 && name.front() == '"' && name.back() == '"') {
           name = name.substr(1, name.size() - 2);
         }
@@ -214,7 +211,7 @@ struct CsvReader::Impl {
 
   double parseCell(std::string_view cell, std::size_t k) const {
     const CsvColumn& col = options.columns[k];
-    cell = trim(cell);
+    cell = detail::trimBlanks(cell);
     if (cell.empty()) fail(line_no, col.name, "empty cell, expected a number");
     const char* first = cell.data();
     const char* last = cell.data() + cell.size();
@@ -254,7 +251,7 @@ struct CsvReader::Impl {
       }
       std::string_view text = *line;
       if (!text.empty() && text.back() == '\r') text.remove_suffix(1);
-      if (trim(text).empty()) {
+      if (detail::trimBlanks(text).empty()) {
         if (blank_line == 0) blank_line = line_no;
         continue;
       }

@@ -2,6 +2,8 @@
 // '#'-comment header, read into a model::HeightGrid that sim::HeightMap is built from.
 #include "geaware/io/height_map_file.hpp"
 
+#include "text.hpp"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -22,13 +24,6 @@ std::string locationPrefix(const std::string& file, int line, int column) {
   if (line > 0) s += ":" + std::to_string(line);
   if (line > 0 && column > 0) s += ":" + std::to_string(column);
   return s;
-}
-
-std::string_view trim(std::string_view s) {
-  const auto first = s.find_first_not_of(" \t\r");
-  if (first == std::string_view::npos) return {};
-  const auto last = s.find_last_not_of(" \t\r");
-  return s.substr(first, last - first + 1);
 }
 
 /// Parses the whole of `s` as a double; nothing on failure.
@@ -85,16 +80,16 @@ model::HeightGrid readHeightMapFile(const std::string& path) {
   int line = 0;
   while (std::getline(in, text)) {
     ++line;
-    const std::string_view s = trim(text);
+    const std::string_view s = detail::trimBlanks(text);
     if (s.empty()) continue;
     if (s.front() == '#') {
       // "# key: value" for one of the known keys, anything else is a comment.
-      const std::string_view body = trim(s.substr(1));
+      const std::string_view body = detail::trimBlanks(s.substr(1));
       const auto colon = body.find(':');
       if (colon == std::string_view::npos) continue;
-      const std::string_view key = trim(body.substr(0, colon));
+      const std::string_view key = detail::trimBlanks(body.substr(0, colon));
       if (key == kFormatVersionKey) {
-        checkFormatVersion(path, line, trim(body.substr(colon + 1)), first_data_line, version_line);
+        checkFormatVersion(path, line, detail::trimBlanks(body.substr(colon + 1)), first_data_line, version_line);
         continue;
       }
       std::optional<double>* slot = key == "origin_x_m"   ? &origin_x
@@ -110,7 +105,7 @@ model::HeightGrid readHeightMapFile(const std::string& path) {
       }
       if (slot->has_value())
         throw HeightMapFileError(path, line, 0, "header key '" + std::string(key) + "' given twice");
-      const std::string_view value = trim(body.substr(colon + 1));
+      const std::string_view value = detail::trimBlanks(body.substr(colon + 1));
       const auto v = parseNumber(value);
       if (!v || !std::isfinite(*v)) {
         throw HeightMapFileError(path, line, 0,
@@ -132,7 +127,7 @@ model::HeightGrid readHeightMapFile(const std::string& path) {
       ++column;
       const std::size_t comma = s.find(',', start);
       const std::string_view field =
-          trim(s.substr(start, comma == std::string_view::npos ? s.npos : comma - start));
+          detail::trimBlanks(s.substr(start, comma == std::string_view::npos ? s.npos : comma - start));
       const auto v = parseNumber(field);
       if (!v)
         throw HeightMapFileError(path, line, column, "'" + std::string(field) + "' is not a number");

@@ -1,5 +1,7 @@
 #include "geaware/traj/hover_descent.hpp"
 
+#include "param_text.hpp"
+
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -7,15 +9,9 @@
 namespace geaware::traj {
 namespace {
 
-std::string describe(const char* field, double value, const char* expected) {
-  std::ostringstream os;
-  os.precision(10);
-  os << field << " = " << value << " (expected " << expected << ")";
-  return os.str();
-}
-
-bool positive(double x) { return std::isfinite(x) && x > 0.0; }
-bool nonNegative(double x) { return std::isfinite(x) && x >= 0.0; }
+using detail::describe;
+using detail::nonNegative;
+using detail::positive;
 
 SmoothProfile makeDescent(const HoverDescentParams& p) {
   const std::vector<std::string> problems = p.validate();

@@ -1,5 +1,7 @@
 #include "geaware/traj/lemniscate.hpp"
 
+#include "param_text.hpp"
+
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -8,15 +10,9 @@
 namespace geaware::traj {
 namespace {
 
-template <typename T>
-std::string describe(const char* field, const T& value, const char* expected) {
-  std::ostringstream os;
-  os.precision(10);
-  os << field << " = " << value << " (expected " << expected << ")";
-  return os.str();
-}
-
-bool positive(double x) { return std::isfinite(x) && x > 0.0; }
+using detail::describe;
+using detail::nonNegative;
+using detail::positive;
 
 // Peak of |dP/dθ| = √(A²cos²θ + 4B²cos²2θ), reached at θ = 0 [m/rad].
 double peakCurveSpeed(const LemniscateParams& p) {

@@ -1,5 +1,7 @@
 #include "geaware/traj/smooth_profile.hpp"
 
+#include "param_text.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -8,6 +10,10 @@
 
 namespace geaware::traj {
 namespace {
+
+using detail::describe;
+using detail::nonNegative;
+using detail::positive;
 
 // The smootherstep σ(x) = 35x⁴ − 84x⁵ + 70x⁶ − 20x⁷ on x ∈ [0, 1], its integral Σ and its
 // derivatives, each in Horner form. σ' = 140x³(1 − x)³, so σ', σ'', σ''' vanish at 0 and 1;
@@ -29,13 +35,6 @@ double sigmaD2(double x) noexcept {  // 420x² − 1680x³ + 2100x⁴ − 840x�
 }
 double sigmaD3(double x) noexcept {  // 840x − 5040x² + 8400x³ − 4200x⁴
   return x * (840.0 + x * (-5040.0 + x * (8400.0 - 4200.0 * x)));
-}
-
-std::string describe(const char* field, double value, const char* expected) {
-  std::ostringstream os;
-  os.precision(10);
-  os << field << " = " << value << " (expected " << expected << ")";
-  return os.str();
 }
 
 }  // namespace
