@@ -117,7 +117,7 @@ Runner addBenchCommand(CLI::App& app) {
                    "its ideal world");
   addTruthOption(cmd, o->truth,
                  "the world the rigs and flights run in: a truth file (docs/truth-file.md; any "
-                 "vehicle file is one) or a built-in world (ideal) (default: the built-in world with "
+                 "vehicle file is one) or a built-in world (ideal, as_built) (default: the built-in world with "
                  "the built-in vehicle)");
   cmd->add_option("--seeds", o->seeds, "flights per experiment and hover curve")
       ->capture_default_str()

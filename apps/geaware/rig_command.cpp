@@ -186,7 +186,7 @@ Runner addRigCommand(CLI::App& app) {
   const auto common = [&opts](CLI::App* cmd) {
     addTruthOption(cmd, opts->truth,
                    "the world whose rotors the rig holds: a truth file (docs/truth-file.md; any "
-                   "vehicle file is one: its ideal world) or a built-in world (ideal) (default: the "
+                   "vehicle file is one: its ideal world) or a built-in world (ideal, as_built) (default: the "
                    "ideal world of the built-in paper quadrotor)");
     // Replaced by --truth: kept, hidden, to say so.
     cmd->add_option("--vehicle", opts->vehicle)->group("");

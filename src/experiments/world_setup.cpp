@@ -17,6 +17,8 @@ void applyWorld(FlightScenario& s, const sim::World& world) {
   s.sensors = world.sensors;
   s.disturbances.turbulence = world.ground_turbulence;
   s.disturbances.turbulence_params = world.ground_turbulence_params;
+  s.disturbances.unsteadiness = world.unsteadyAtAltitude();
+  s.disturbances.unsteadiness_params = world.altitude_unsteadiness_params;
   s.disturbances.wind = world.room_air;
   s.disturbances.wind_params = world.room_air_params;
 }

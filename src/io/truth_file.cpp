@@ -160,7 +160,8 @@ void readTruthSection(const YAML::Node& doc, MapReader& root, sim::World& w, Yam
 /// A sim field path ("thrust_multiplier[2]", "imu.rate_Hz") as the truth file's key path.
 std::string keyOfField(const std::string& prefix, std::string field) {
   static const std::vector<std::pair<std::string, std::string>> kAliases = {
-      {"thrust_multiplier", "motor_k_T_scale"}, {"cog_offset_B", "cog_offset_m"}};
+      {"thrust_multiplier", "motor_k_T_scale"}, {"torque_multiplier", "motor_k_I_scale"},
+      {"thrust_axis_tilt_rad", "thrust_axis_tilt_deg"}, {"cog_offset_B", "cog_offset_m"}};
   for (const auto& [from, to] : kAliases) {
     if (field.rfind(from, 0) == 0) field = to + field.substr(from.size());
   }
@@ -179,6 +180,7 @@ void validateWorld(const sim::World& w, YamlContext& ctx) {
   report("", w.truth.validate());  // the aerodynamics' too (keys aero.…)
   report("sensors.", w.sensors.validate());
   if (w.ground_turbulence) report("disturbances.ground_turbulence.", w.ground_turbulence_params.validate());
+  report("disturbances.altitude_unsteadiness.", w.altitude_unsteadiness_params.validate());
   if (w.room_air) report("disturbances.room_air.", w.room_air_params.validate());
 }
 

@@ -74,6 +74,17 @@ constexpr bool kClosed = false; // lower bound included
 void bodyKeys(std::vector<K>& t) {
   t.push_back(vector("motor_k_T_scale", "", 4, 0.5, 1.5, GW_ARRAY(w.truth.thrust_multiplier),
                      "each motor's k_T relative to the vehicle part's, mixer order"));
+  t.push_back(vector("motor_k_I_scale", "", 4, 0.5, 1.5, GW_ARRAY(w.truth.torque_multiplier),
+                     "each motor's k_I relative to the vehicle part's, mixer order"));
+  K tilt = vector("thrust_axis_tilt_deg", "deg", 2, -10.0, 10.0,
+                  [](W& w, std::size_t i) -> double& {
+                    return w.truth.thrust_axis_tilt_rad[i / 2][static_cast<Eigen::Index>(i % 2)];
+                  },
+                  "each rotor's thrust axis tilted about body x, then body y, mixer order");
+  tilt.kind = kRows;
+  tilt.rows = 4;
+  tilt.to_si = std::numbers::pi / 180.0;
+  t.push_back(tilt);
   t.push_back(vector("cog_offset_m", "m", 3, -1.0, 1.0, GW_ELEMENT(w.truth.cog_offset_B),
                      "centre of mass relative to the geometric centre, body x, y, z"));
   t.push_back(number("motor.time_constant_s", "s", 0.0, 10.0, kOpen,
@@ -82,6 +93,8 @@ void bodyKeys(std::vector<K>& t) {
                      GW_NUMBER(w.truth.motor.min_speed_rpm), "hard rotor-speed floor"));
   t.push_back(number("motor.max_speed_rpm", "rpm", 0.0, 1e6, kOpen,
                      GW_NUMBER(w.truth.motor.max_speed_rpm), "hard rotor-speed ceiling"));
+  t.push_back(number("motor.dead_time_s", "s", 0.0, 1.0, kClosed, GW_NUMBER(w.truth.motor.dead_time_s),
+                     "ESC/link dead time: a motor acts on the command of this long ago"));
   t.push_back(flag("battery.enabled", [](W& w) -> bool& { return w.truth.battery.enabled; },
                    "false: the ESC curve holds at its nominal voltage always"));
   t.push_back(number("battery.full_voltage_V", "V", 0.0, 1000.0, kOpen,
@@ -146,6 +159,17 @@ void aeroKeys(std::vector<K>& t) {
     "near-ground drag reduction a_y");
   a("aero.drag_ground_height_m", "m", 1e-3, 10.0, GW_NUMBER(w.truth.aero.drag_ground_height_m),
     "range z_q of the near-ground drag reduction");
+  a("aero.in_flight_cushion_scale", "", 0.0, 2.0, GW_NUMBER(w.truth.aero.in_flight_cushion_scale),
+    "the additional-thrust fraction in flight relative to the rigs' (the rigs never apply it)");
+  a("aero.translational_lift_per_mps2", "1/(m/s)²", 0.0, 1.0,
+    GW_NUMBER(w.truth.aero.translational_lift_per_mps2),
+    "c of the free-air thrust gain 1 + min(c·v_h², max), v_h the rotor's in-plane airspeed");
+  a("aero.translational_lift_max", "", 0.0, 0.5, GW_NUMBER(w.truth.aero.translational_lift_max),
+    "cap of the translational-lift gain");
+  a("aero.airframe_drag_area_m2", "m²", 0.0, 1.0, GW_NUMBER(w.truth.aero.airframe_drag_area_m2),
+    "C_d·A of the quadratic airframe drag at the CoM (0: none)");
+  a("aero.air_density_kg_per_m3", "kg/m³", 0.5, 1.5, GW_NUMBER(w.truth.aero.air_density_kg_per_m3),
+    "air density of the airframe drag");
 }
 
 void imuMocapKeys(std::vector<K>& t) {
@@ -169,10 +193,26 @@ void imuMocapKeys(std::vector<K>& t) {
                      GW_NUMBER(w.sensors.imu.accel_range_m_per_s2), "accelerometer saturation"));
   t.push_back(vector("sensors.imu.lever_arm_B_m", "m", 3, -10.0, 10.0, GW_ELEMENT(w.sensors.imu.lever_arm_B_m),
                      "IMU position relative to the geometric centre, body"));
+  t.push_back(number("sensors.imu.vibration_gyro_std_rad_per_s", "rad/s", 0.0, 10.0, kClosed,
+                     GW_NUMBER(w.sensors.imu.vibration_gyro_std_rad_per_s),
+                     "vibration noise left in the gyro output, 1σ per axis"));
+  t.push_back(number("sensors.imu.vibration_accel_std_m_per_s2", "m/s²", 0.0, 100.0, kClosed,
+                     GW_NUMBER(w.sensors.imu.vibration_accel_std_m_per_s2),
+                     "vibration noise left in the accelerometer output, 1σ per axis"));
+  t.push_back(number("sensors.imu.lowpass_cutoff_Hz", "Hz", 0.0, 1e4, kClosed,
+                     GW_NUMBER(w.sensors.imu.lowpass_cutoff_Hz),
+                     "the flight controller's second-order low-pass (0: off)"));
+  t.push_back(number("sensors.imu.filter_rate_Hz", "Hz", 0.0, 1e5, kOpen,
+                     GW_NUMBER(w.sensors.imu.filter_rate_Hz), "raw sample rate the low-pass runs at"));
   t.push_back(number("sensors.mocap.rate_Hz", "Hz", 0.0, 1e4, kOpen, GW_NUMBER(w.sensors.mocap.rate_Hz),
                      "motion-capture rate"));
   t.push_back(number("sensors.mocap.latency_s", "s", 0.0, 1.0, kClosed, GW_NUMBER(w.sensors.mocap.latency_s),
                      "capture-to-delivery delay"));
+  t.push_back(number("sensors.mocap.reported_latency_s", "s", -1.0, 1.0, kClosed,
+                     GW_NUMBER(w.sensors.mocap.reported_latency_s),
+                     "the latency the driver stamps, all the estimator knows (negative: the true one)"));
+  t.push_back(number("sensors.mocap.latency_jitter_std_s", "s", 0.0, 0.1, kClosed,
+                     GW_NUMBER(w.sensors.mocap.latency_jitter_std_s), "1σ of each capture's latency"));
   t.push_back(number("sensors.mocap.position_noise_std_m", "m", 0.0, 1.0, kClosed,
                      GW_NUMBER(w.sensors.mocap.position_noise_std_m), "position noise, 1σ per axis"));
   t.push_back(number("sensors.mocap.attitude_noise_std_rad", "rad", 0.0, 0.5, kClosed,
@@ -232,6 +272,14 @@ void disturbanceKeys(std::vector<K>& t) {
                      GW_NUMBER(w.ground_turbulence_params.scale_height_m), "h_s: the intensity halves about here"));
   t.push_back(number("disturbances.ground_turbulence.cutoff_height_m", "m", 0.0, 1e3, kOpen,
                      GW_NUMBER(w.ground_turbulence_params.cutoff_height_m), "h_max: none from here up"));
+  t.push_back(number("disturbances.altitude_unsteadiness.torque_std_Nm", "N·m", 0.0, 10.0, kClosed,
+                     GW_NUMBER(w.altitude_unsteadiness_params.torque_std_Nm),
+                     "σ_τ about each body axis, at every height (blade imbalance…; 0 and force 0: off)"));
+  t.push_back(number("disturbances.altitude_unsteadiness.force_std_N", "N", 0.0, 100.0, kClosed,
+                     GW_NUMBER(w.altitude_unsteadiness_params.force_std_N), "σ_F along each body axis"));
+  t.push_back(number("disturbances.altitude_unsteadiness.correlation_time_s", "s", 0.0, 1e3, kOpen,
+                     GW_NUMBER(w.altitude_unsteadiness_params.correlation_time_s),
+                     "τ_c of its Gauss–Markov processes"));
   t.push_back(flag("disturbances.room_air.enabled", [](W& w) -> bool& { return w.room_air; },
                    "air moving in the room on or off"));
   t.push_back(vector("disturbances.room_air.mean_W_mps", "m/s", 3, -100.0, 100.0,

@@ -91,6 +91,37 @@ TEST(TruthFile, TheBuiltInIdealWorldIsTodaysWorld) {
   EXPECT_THROW((void)io::builtinTruth("nowhere"), std::invalid_argument);
 }
 
+// config/truths/paper_quad_as_built.yaml carries docs/world.md's values, in the world's units.
+TEST(TruthFile, TheAsBuiltWorldIsDocsWorld) {
+  const sim::World w = io::builtinTruth("as_built");
+  EXPECT_EQ(w.source, "config/truths/paper_quad_as_built.yaml");
+  EXPECT_EQ(w.truth.mass_kg, 1.696);
+  EXPECT_EQ(w.truth.inertia_kgm2(0, 0), 0.0077048);
+  EXPECT_EQ(w.truth.inertia_kgm2(2, 2), 0.0128923);
+  EXPECT_EQ(w.truth.cog_offset_B.z(), -0.0017);
+  EXPECT_EQ(w.truth.thrust_multiplier[2], 0.97);
+  EXPECT_EQ(w.truth.torque_multiplier[2], 1.04);
+  EXPECT_NEAR(w.truth.thrust_axis_tilt_rad[2].y(), 0.60 * 3.14159265358979323846 / 180.0, 1e-15);
+  EXPECT_EQ(w.truth.motor.dead_time_s, 0.010);
+  EXPECT_EQ(w.truth.aero.in_flight_cushion_scale, 0.40);
+  EXPECT_EQ(w.truth.aero.induced_velocity_mps, 8.26);
+  EXPECT_EQ(w.truth.aero.airframe_drag_area_m2, 0.02);
+  EXPECT_EQ(w.sensors.imu.vibration_gyro_std_rad_per_s, 0.0524);
+  EXPECT_EQ(w.sensors.imu.lowpass_cutoff_Hz, 20.0);
+  EXPECT_EQ(w.sensors.mocap.reported_latency_s, 0.010);
+  EXPECT_TRUE(w.unsteadyAtAltitude());
+  EXPECT_EQ(w.altitude_unsteadiness_params.torque_std_Nm, 0.0075);
+  EXPECT_TRUE(w.room_air);
+  EXPECT_EQ(w.room_air_params.gust_correlation_time_s, 1.5);
+  EXPECT_TRUE(w.ground_turbulence);
+  EXPECT_FALSE(w.variesPerFlight());
+  EXPECT_EQ(w.team_scale_error_std_kg, 0.002);
+  // What it does not name stays the ideal world's: the rigs' calibrated aerodynamics.
+  EXPECT_EQ(w.truth.aero.body_coefficient, sim::RotorAeroParams{}.body_coefficient);
+  const sim::World from_file = io::loadTruthFile(sourceDir() / "config/truths/paper_quad_as_built.yaml");
+  EXPECT_EQ(section(from_file), section(w));
+}
+
 TEST(TruthFile, SectionKeysLandInTheWorld) {
   const std::string text = vehicleText() +
                            "truth:\n"

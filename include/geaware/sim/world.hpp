@@ -31,6 +31,9 @@ struct World {
   /// Near-ground recirculation buffeting (truth.disturbances.ground_turbulence).
   bool ground_turbulence = true;
   GroundTurbulenceParams ground_turbulence_params;
+  /// Buffeting at every height (blade imbalance…; truth.disturbances.altitude_unsteadiness): on
+  /// when either σ is positive.
+  UnsteadinessParams altitude_unsteadiness_params;
   /// Air moving in the room: a mean and gusts (truth.disturbances.room_air).
   bool room_air = false;
   WindParams room_air_params;
@@ -40,6 +43,10 @@ struct World {
   /// 1σ of the team's scale reading of the mass (truth.team.scale_error_std_kg) [kg].
   double team_scale_error_std_kg = 0.0;
 
+  [[nodiscard]] bool unsteadyAtAltitude() const noexcept {
+    return altitude_unsteadiness_params.torque_std_Nm > 0.0 ||
+           altitude_unsteadiness_params.force_std_N > 0.0;
+  }
   /// Whether any per-flight variation bound is non-zero.
   [[nodiscard]] bool variesPerFlight() const noexcept {
     const MismatchSpec& m = per_flight_variation;
