@@ -85,7 +85,7 @@ int runBench(const BenchOptions& o) {
   if (c.calibration.tables) {
     fmt::print(human, "calibration: F_G and M_G identified as tables (--ground-effect table)\n");
   }
-  if (!o.truth.empty()) fmt::print(human, "world: {}\n", c.world->source);
+  fmt::print(human, "world: {}\n", c.world->source);
   if (o.no_turbulence) fmt::print(human, "truth overrides: no near-ground turbulence\n");
   fmt::print(human, "{}", experiments::formatCampaign(r));
   std::fflush(human);
@@ -117,7 +117,7 @@ Runner addBenchCommand(CLI::App& app) {
                    "its ideal world");
   addTruthOption(cmd, o->truth,
                  "the world the rigs and flights run in: a truth file (docs/truth-file.md; any "
-                 "vehicle file is one) or a built-in world (ideal, as_built) (default: the built-in world with "
+                 "vehicle file is one) or a built-in world (ideal, as_built) (default: as_built with "
                  "the built-in vehicle)");
   cmd->add_option("--seeds", o->seeds, "flights per experiment and hover curve")
       ->capture_default_str()

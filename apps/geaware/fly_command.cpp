@@ -219,8 +219,8 @@ Runner addFlyCommand(CLI::App& app) {
                    "the vehicle the controller believes in (default: the built-in paper quadrotor)");
   addTruthOption(cmd, o->truth,
                  "the world flown in: a truth file (docs/truth-file.md; any vehicle file is one) or a "
-                 "built-in world (ideal, as_built); replaces a scenario file's truth (default: the built-in "
-                 "world with the built-in vehicle, the ideal world of --vehicle FILE otherwise)");
+                 "built-in world (ideal, as_built); replaces a scenario file's truth (default: as_built "
+                 "with the built-in vehicle, the ideal world of --vehicle FILE otherwise)");
   auto* scenario = cmd->add_option("--scenario", o->scenario,
                                    "flight scenario YAML file (docs/scenario-file.md); replaces "
                                    "--vehicle, --trajectory…, --controller, --seed, --no-turbulence")

@@ -82,7 +82,7 @@ struct RigLogs {
 RigLogs runRigs(const model::VehicleParams& file_vehicle, const sim::TruthParams& truth,
                 const CalibrationSweeps& sweeps, ControllerCalibration& c) {
   RigLogs logs;
-  const sim::ForceTorquePlatform rig(truth.rotorGeometry(), truth.aero, sweeps.platform);
+  const sim::ForceTorquePlatform rig(platformGeometry(truth), truth.aero, sweeps.platform);
   logs.platform.source = "virtual quadrotor platform (campaign calibration)";
   c.platform_rows += appendSweep(rig, sweeps.level, 10 + sweeps.seed, logs.platform);
   c.platform_rows += appendSweep(rig, sweeps.tilted, 20 + sweeps.seed, logs.platform);
@@ -206,7 +206,7 @@ model::VehicleParams mergeIdentified(const model::VehicleParams& file_vehicle, c
 void compareCurves(const model::VehicleParams& file_vehicle, const sim::TruthParams& truth,
                    const CalibrationSweeps& sweeps, ControllerCalibration& c) {
   const model::VehicleParams& v = c.vehicle;
-  const sim::RotorGeometry geometry = truth.rotorGeometry();
+  const sim::RotorGeometry geometry = platformGeometry(truth);
   sim::PlatformParams quiet = sweeps.platform;
   quiet.force_noise_N = 0.0;
   quiet.torque_noise_Nm = 0.0;

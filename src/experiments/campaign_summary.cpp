@@ -28,7 +28,7 @@ std::string configurationCells(const TableOneExperiment& x) {
 std::string calibrationText(const CampaignResult& r) {
   std::string s;
   const auto& cal = r.calibration;
-  s += fmt::format("Calibration on the virtual rigs (truth: the vehicle file's nominal truth): "
+  s += fmt::format("Calibration on the virtual rigs (holding the world's rotors): "
                    "{} platform rows, {} stand rows, {:.2f} s\n",
                    cal.platform_rows, cal.stand_rows, r.calibration_s);
   s += fmt::format("  {:<42} {:>14} {:>14} {:>10}  {}\n", "parameter", "vehicle file", "identified",

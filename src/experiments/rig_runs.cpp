@@ -19,7 +19,7 @@ PlatformRigResult runPlatformRig(const sim::TruthParams& truth, const PlatformRi
                                  const std::function<void(const sim::PlatformRow&)>& sink,
                                  const std::function<void(std::size_t, std::size_t)>& progress) {
   checkPlatformRigRun(run);
-  const sim::RotorGeometry geometry = truth.rotorGeometry();
+  const sim::RotorGeometry geometry = platformGeometry(truth);
   const sim::ForceTorquePlatform platform(geometry, truth.aero, run.params);
   double k_sum = 0.0;
   for (double k : geometry.k_T_N_per_rpm2) k_sum += k;
@@ -69,6 +69,12 @@ report::Page platformRigPage(const PlatformMeans& means, const std::string& prod
   if (!thrust.series.empty()) page.addPlot(std::move(thrust));
   if (!torque.series.empty()) page.addPlot(std::move(torque));
   return page;
+}
+
+sim::RotorGeometry platformGeometry(const sim::TruthParams& truth) {
+  sim::TruthParams mounted = truth;
+  mounted.cog_offset_B.setZero();
+  return mounted.rotorGeometry();
 }
 
 model::VehicleParams rotorStandVehicle(const model::VehicleParams& file_vehicle,

@@ -57,6 +57,11 @@ void checkPlatformRigRun(const PlatformRigRun& run);
 /// `produced_by` is the first paragraph (the command that made it).
 [[nodiscard]] report::Page platformRigPage(const PlatformMeans& means, const std::string& produced_by);
 
+/// The rotors as the force/torque platform holds them: the truth's rotors (their spread and
+/// thrust axes) about the platform's sensor at the vehicle's geometric centre, where the
+/// vehicle is mounted and its weight tared, not about its centre of mass.
+[[nodiscard]] sim::RotorGeometry platformGeometry(const sim::TruthParams& truth);
+
 /// The vehicle the single-rotor stand mounts: rotor 1 of the truth — its k_T and k_I (with their
 /// spreads), J_R and ESC curve — on `file_vehicle`'s other parameters.
 [[nodiscard]] model::VehicleParams rotorStandVehicle(const model::VehicleParams& file_vehicle,

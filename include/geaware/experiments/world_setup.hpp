@@ -11,8 +11,9 @@
 namespace geaware::experiments {
 
 /// The built-in truth (io::builtinTruthNames) that `fly`, `bench` and scenario files fly in when
-/// they name none and the controller's vehicle is the built-in one.
-inline constexpr const char* kDefaultTruth = "ideal";
+/// they name none and the controller's vehicle is the built-in one: the paper's quadrotor as
+/// built (config/truths/paper_quad_as_built.yaml, docs/world.md).
+inline constexpr const char* kDefaultTruth = "as_built";
 
 /// The world when none is named: the built-in kDefaultTruth when the controller's vehicle is
 /// the built-in one (`belief_is_builtin`), otherwise the ideal world of the controller's own
