@@ -94,6 +94,7 @@ void Controller::reset() noexcept {
   have_yaw_lag_ = false;
   yaw_torque_lagged_Nm_ = 0.0;
   dob_residual_mps2_.setZero();
+  have_dob_residual_ = false;
   position_integral_ms_.setZero();
   last_flags_ = kFlagNone;
 }
@@ -182,7 +183,13 @@ Eigen::Vector3d Controller::disturbanceResidual(const ControllerInput& in, doubl
     if (model) explained += ground_effect_.thrustRatio(h) * thrust_ref_N / mass_kg_ * R.col(2);
     const double lim = params_.dob_limit_mps2;
     const Eigen::Vector3d raw = (in.external_accel_W - explained).cwiseMax(-lim).cwiseMin(lim);
-    // First-order low-pass, backward Euler: τ_d·ḋ = raw − d.
+    // First-order low-pass, backward Euler: τ_d·ḋ = raw − d; like every filter of the
+    // controller (model::LowPass2) it starts in steady state at its first input, so a mismatch
+    // present from take-over on is cancelled at once instead of being flown into for τ_d.
+    if (!have_dob_residual_) {
+      dob_residual_mps2_ = raw;
+      have_dob_residual_ = true;
+    }
     dob_residual_mps2_ += dt_s_ / (params_.dob_time_constant_s + dt_s_) * (raw - dob_residual_mps2_);
   }
   return dob_residual_mps2_;
@@ -218,9 +225,11 @@ Controller::Additions Controller::additions(const ControllerInput& in, double th
   x.reference = in.reference;
   if (params_.clearance_guard && have_ground_) {
     // The floor: the landing gear's rotor-plane height plus the margin above the ground the
-    // ranger sees. The reference is raised to it (no descent through it), and the vertical
-    // command is bounded below by the barrier ψ = ḣ + α·(h − h_min) ≥ 0: ψ̇ ≥ −α·ψ when
-    // a_z ≥ −2α·ḣ − α²·(h − h_min) (docs/controller.md, "The clearance guard").
+    // ranger sees. The reference is raised to it (no descent through it), and while sinking the
+    // vertical command is bounded below by the braking barrier
+    // ψ = (h − h_min) − |ḣ|·t_r − ḣ²/(2·a_b) ≥ 0 (after a reaction time t_r, braking at a_b
+    // stops above the floor): ψ̇ ≥ −γ·ψ when a_z ≥ (|ḣ| − γ·ψ)/(t_r + |ḣ|/a_b), at most a_b
+    // (docs/controller.md, "The clearance guard").
     const double h_min = min_rotor_plane_height_m_ + params_.guard_margin_m;
     const double z_floor = ground_z_m_ + h_min;
     if (x.reference.p_W.z() < z_floor) {
@@ -229,9 +238,13 @@ Controller::Additions Controller::additions(const ControllerInput& in, double th
       x.reference.a_W.z() = std::max(x.reference.a_W.z(), 0.0);
       flags |= kFlagClearanceGuard;
     }
-    const double a = params_.guard_rate_per_s;
-    const double h = in.estimate.p_W.z() - ground_z_m_;
-    x.a_z_min = -2.0 * a * in.estimate.v_W.z() - a * a * (h - h_min);
+    const double v = in.estimate.v_W.z();
+    if (v < 0.0) {
+      const double a_b = params_.guard_brake_mps2;
+      const double t_r = params_.guard_reaction_time_s;
+      const double psi = (in.estimate.p_W.z() - ground_z_m_ - h_min) + v * t_r - v * v / (2.0 * a_b);
+      x.a_z_min = std::min((-v - params_.guard_rate_per_s * psi) / (t_r - v / a_b), a_b);
+    }
   }
   x.a_int = integralTerm(x.reference.p_W - in.estimate.p_W, flags);
   x.a_dob = disturbanceResidual(in, thrust_ref_N, R);
@@ -251,8 +264,14 @@ Eigen::Vector3d Controller::thrustVectorCommand(const ControllerInput& in,
           params_.k_v_per_s.cwiseProduct(r.v_W - in.estimate.v_W);
   // geaware's additions, each only when switched on (the paper's rows stay bit-identical).
   if (params_.k_i_per_s3.any()) a_des += x.a_int;
-  if (a_des.z() < x.a_z_min) {
-    a_des.z() = x.a_z_min;  // the clearance guard
+  // The clearance guard bounds the acceleration the vehicle will get: the model's F_G is fed
+  // forward at the reference's height, but acts at the measured one.
+  const double a_gap = params_.acceleration == AccelerationCompensation::kModel
+                           ? ref.thrust_N / mass_kg_ * z_B.z() *
+                                 (ground_effect_.thrustRatio(last_height_m_) - ground_effect_.thrustRatio(h))
+                           : 0.0;
+  if (a_des.z() + a_gap < x.a_z_min) {
+    a_des.z() = x.a_z_min - a_gap;  // the clearance guard
     flags |= kFlagClearanceGuard;
   }
   if (params_.dob_time_constant_s > 0.0) a_des -= x.a_dob;

@@ -78,6 +78,8 @@ void validateAdditions(const ControllerParams& p, model::FieldChecker& c) {
   }
   c.range("integral_limit_mps2", p.integral_limit_mps2, 0.0, 20.0, kExclusive, "m/s²");
   c.range("guard_margin_m", p.guard_margin_m, 0.0, 1.0, kInclusive, "m");
+  c.range("guard_brake_mps2", p.guard_brake_mps2, 0.0, 50.0, kExclusive, "m/s²");
+  c.range("guard_reaction_time_s", p.guard_reaction_time_s, 0.0, 1.0, kInclusive, "s");
   c.range("guard_rate_per_s", p.guard_rate_per_s, 0.0, 100.0, kExclusive, "1/s");
 }
 
@@ -128,6 +130,8 @@ ControllerParams recommendedControllerParams() {
   p.integral_limit_mps2 = 1.0;
   p.clearance_guard = true;
   p.guard_margin_m = 0.01;
+  p.guard_brake_mps2 = 2.0;
+  p.guard_reaction_time_s = 0.05;
   p.guard_rate_per_s = 4.0;
   return p;
 }
@@ -140,7 +144,8 @@ bool sameConfiguration(const ControllerParams& p, const ControllerParams& q) {
          p.dob_time_constant_s == q.dob_time_constant_s && p.dob_limit_mps2 == q.dob_limit_mps2 &&
          p.k_i_per_s3 == q.k_i_per_s3 && p.integral_limit_mps2 == q.integral_limit_mps2 &&
          p.clearance_guard == q.clearance_guard && p.guard_margin_m == q.guard_margin_m &&
-         p.guard_rate_per_s == q.guard_rate_per_s;
+         p.guard_brake_mps2 == q.guard_brake_mps2 &&
+         p.guard_reaction_time_s == q.guard_reaction_time_s && p.guard_rate_per_s == q.guard_rate_per_s;
 }
 
 /// Copies `q`'s switches and additions into `p`.
@@ -153,6 +158,8 @@ void setConfiguration(ControllerParams& p, const ControllerParams& q) {
   p.integral_limit_mps2 = q.integral_limit_mps2;
   p.clearance_guard = q.clearance_guard;
   p.guard_margin_m = q.guard_margin_m;
+  p.guard_brake_mps2 = q.guard_brake_mps2;
+  p.guard_reaction_time_s = q.guard_reaction_time_s;
   p.guard_rate_per_s = q.guard_rate_per_s;
 }
 

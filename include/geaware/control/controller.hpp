@@ -25,8 +25,8 @@
 // (recommendedControllerParams(), docs/controller.md): the disturbance observer's residual
 // (ControllerInput::external_accel_W minus the model's F_G and D(h) at the measured height),
 // low-passed and fed forward; integral action on position with anti-windup; and a clearance
-// guard (the reference raised to the landing gear's height plus a margin, and a barrier bound on
-// the vertical command).
+// guard (the reference raised to the landing gear's height plus a margin, and a braking-barrier
+// bound on the vertical command while sinking).
 // No allocation and no exceptions in update(); invalid inputs are flagged and never reach the
 // motors as NaN.
 
@@ -96,7 +96,8 @@ struct ControllerOutput {
   Eigen::Vector3d a_dob_W = Eigen::Vector3d::Zero();  ///< disturbance residual fed forward (subtracted) [m/s²]
   Eigen::Vector3d a_int_W = Eigen::Vector3d::Zero();  ///< integral term K^I·∫e_p (added) [m/s²]
   /// The clearance guard's lower bound on the commanded vertical acceleration
-  /// (a_ref + K^P·e_p + K^V·e_v + K^I·∫e_p), −∞ when the guard is off or has no height [m/s²].
+  /// (a_ref + K^P·e_p + K^V·e_v + K^I·∫e_p); −∞ when the guard is off, has no height or the
+  /// vehicle is not sinking [m/s²].
   double guard_min_accel_z_mps2 = -std::numeric_limits<double>::infinity();
   /// The height the position loop aimed at: the reference's, raised to the guard's floor [m].
   double z_cmd_m = 0.0;
@@ -203,6 +204,7 @@ class Controller {
   // position integral and the previous tick's flags (anti-windup).
   double min_rotor_plane_height_m_;
   Eigen::Vector3d dob_residual_mps2_ = Eigen::Vector3d::Zero();
+  bool have_dob_residual_ = false;
   Eigen::Vector3d position_integral_ms_ = Eigen::Vector3d::Zero();  // ∫e_p dt [m·s]
   std::uint32_t last_flags_ = kFlagNone;
 };

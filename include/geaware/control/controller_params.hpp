@@ -80,8 +80,14 @@ struct ControllerParams {
   /// below the landing gear's height (VehicleParams::min_rotor_plane_height_m) plus the margin.
   bool clearance_guard = false;
   double guard_margin_m = 0.01;   ///< clearance kept above the landing gear's height [m]
-  /// α of the barrier ḣ + α·(h − h_min) ≥ 0: the guard's lower bound on the commanded vertical
-  /// acceleration is −2α·ḣ − α²·(h − h_min) [1/s].
+  /// a_b, the upward acceleration the guard may use to stop a descent above the floor: the
+  /// barrier is ψ = (h − h_min) − |ḣ|·t_r − ḣ²/(2·a_b) ≥ 0 while sinking [m/s²].
+  double guard_brake_mps2 = 2.0;
+  /// t_r, the reaction time of the thrust (motors, ESC dead time, filters) the barrier allows
+  /// for before the braking acts [s].
+  double guard_reaction_time_s = 0.05;
+  /// γ, the rate at which ψ may approach zero (ψ̇ ≥ −γ·ψ): while sinking, the guard's lower bound
+  /// on the commanded vertical acceleration is (|ḣ| − γ·ψ)/(t_r + |ḣ|/a_b), at most a_b [1/s].
   double guard_rate_per_s = 4.0;
 
   /// Whether any of geaware's additions is on.
