@@ -22,6 +22,18 @@ namespace {
 constexpr double kMinAxisZ = 0.9659258262890683;
 }  // namespace
 
+const char* toString(GroundEffectLaw law) noexcept {
+  switch (law) {
+    case GroundEffectLaw::kCalibrated:
+      return "calibrated";
+    case GroundEffectLaw::kCheesemanBennett:
+      return "cheeseman_bennett";
+    case GroundEffectLaw::kSanchezCuevas:
+      return "sanchez_cuevas";
+  }
+  return "?";
+}
+
 std::vector<model::FieldError> RotorAeroParams::validate() const {
   std::vector<model::FieldError> e;
   model::FieldChecker c(e);
@@ -134,6 +146,7 @@ RotorAerodynamics::RotorAerodynamics(const RotorGeometry& geometry, const RotorA
     tilted_ = tilted_ || a != Eigen::Vector3d::UnitZ();
   }
   lift_ = params.translational_lift_per_mps2 > 0.0 && params.translational_lift_max > 0.0;
+  beta_ = params.law == GroundEffectLaw::kCalibrated ? params.own_thrust_fraction : 1.0;
   // z*: the peak of the (unimodal) rotor-resolved term on [min distance, merge height], by
   // golden-section search (once, here).
   double lo = params.min_ground_distance_m;
@@ -204,6 +217,7 @@ RotorGroundFactors RotorAerodynamics::groundFactors(
     const std::array<double, 4>& ground_distance_m) const noexcept {
   // The four rotors run in the lanes of Eigen::Array4d (SIMD pairs): the square roots and
   // divisions below are the cost of this function (docs/sim-aerodynamics.md, "Performance").
+  if (params_.law != GroundEffectLaw::kCalibrated) return closedFormFactors(ground_distance_m);
   using A4 = Eigen::Array4d;
   RotorGroundFactors out;
   const double range = params_.ground_effect_range_m;
@@ -266,6 +280,48 @@ RotorGroundFactors RotorAerodynamics::groundFactors(
   return out;
 }
 
+double RotorAerodynamics::closedFormFraction(double z) const noexcept {
+  // x is the sum of the terms under 1/(1 − x) of the law (docs/sim-aerodynamics.md, "Other
+  // law families"); φ = 1/(1 − x) − 1 = x/(1 − x).
+  // Cheeseman & Bennett 1955: x = (R/4z)², the rotor's own image.
+  double x = image_num_ / (z * z);
+  // Sanchez-Cuevas et al. 2017: plus the images of the neighbours at d and √2·d and the body
+  // term 2·K_b at the rotor-to-centre distance, here at the rotor's OWN distance (collective()
+  // is exactly that sum, evaluated there at the mean distance).
+  if (params_.law == GroundEffectLaw::kSanchezCuevas) x += collective(z);
+  // At z ≥ R/2 x stays below 0.5 for the paper's quadrotor; the bound only keeps an unusual
+  // geometry finite.
+  x = std::min(x, 0.9);
+  return x / (1.0 - x);
+}
+
+RotorGroundFactors RotorAerodynamics::closedFormFactors(
+    const std::array<double, 4>& ground_distance_m) const noexcept {
+  // The same distances, taper and rotor-drag factors as groundFactors(); φ_i from the
+  // closed-form law at each rotor's own distance, held at z ≥ R/2 (kClosedFormMinHeightOverRadius).
+  RotorGroundFactors out;
+  const double range = params_.ground_effect_range_m;
+  const double z_min = params_.min_ground_distance_m;
+  const double z_law = kClosedFormMinHeightOverRadius * geometry_.radius_m;
+  for (std::size_t i = 0; i < 4; ++i) {
+    const double d = ground_distance_m[i];
+    const bool surface = !(std::isnan(d) || d == std::numeric_limits<double>::infinity());
+    const double z_drag = surface ? std::max(d, z_min) : 0.0;
+    const double near = surface ? 1.0 / (1.0 + z_drag * z_drag * inv_drag_height_sq_) : 0.0;
+    out.drag_scale_x[i] = 1.0 - params_.drag_ground_reduction_x * near;
+    out.drag_scale_y[i] = 1.0 - params_.drag_ground_reduction_y * near;
+    if (!(d < range)) {
+      out.phi[i] = 0.0;  // no surface within range (NaN lands here too)
+      continue;
+    }
+    const double z = std::max(d, z_min);
+    double s = z * inv_range_;
+    s *= s;
+    out.phi[i] = closedFormFraction(std::max(z, z_law)) * (1.0 - s * s);
+  }
+  return out;
+}
+
 std::array<double, 4> RotorAerodynamics::additionalThrustFraction(
     const std::array<double, 4>& ground_distance_m) const noexcept {
   return groundFactors(ground_distance_m).phi;
@@ -307,7 +363,7 @@ Wrench RotorAerodynamics::evaluate(const std::array<double, 4>& n_rpm, const Eig
   const A4 fade = (v_i_sq + kTiny) / (v_i_sq + (v_x * v_x + v_y * v_y) + kTiny);
   const A4 dphi = fade * phi;
   // 5. Thrust: free-air plus the increment (β of it on the rotor's own n², the rest shared).
-  const double beta = params_.own_thrust_fraction;
+  const double beta = beta_;
   A4 thrust = t_free + dphi * (beta * t_free + (1.0 - beta) * t_mean);
   if (lift_) {
     // 5a. Translational lift on the free-air part: 1 + min(c·v_h², max) (docs/world.md).

@@ -31,9 +31,36 @@
 
 namespace geaware::sim {
 
+/// Which law gives each rotor's additional-thrust fraction φ_i (docs/sim-aerodynamics.md,
+/// "Other law families"). Only kCalibrated reproduces the paper's platform measurements; the
+/// others are textbook closed forms for the robustness campaign (docs/robustness.md).
+enum class GroundEffectLaw {
+  /// Collective cushion + rotor-resolved impingement + suck-down (the calibrated default).
+  kCalibrated,
+  /// Per rotor, Cheeseman & Bennett 1955: φ_i = 1/(1 − (R/4z_i)²) − 1 at z_i ≥ R/2.
+  kCheesemanBennett,
+  /// Per rotor, Sanchez-Cuevas, Heredia & Ollero 2017 (neighbour images and the body term
+  /// K_b = body_coefficient), each rotor at its own distance z_i ≥ R/2.
+  kSanchezCuevas,
+};
+
+/// "calibrated", "cheeseman_bennett", "sanchez_cuevas".
+[[nodiscard]] const char* toString(GroundEffectLaw law) noexcept;
+
+/// The closed-form laws are evaluated at max(z, kClosedFormMinHeightOverRadius·R): both have a
+/// pole (Cheeseman–Bennett's at z = R/4) and are used above z/R = 0.5, where Cheeseman–Bennett
+/// gives T_IGE/T_OGE = 4/3 [-].
+inline constexpr double kClosedFormMinHeightOverRadius = 0.5;
+
 /// Parameters of the truth aerodynamics (defaults: calibrated to the paper's measurements for
 /// its quadrotor; `geaware rig calibrate` checks them, docs/sim-aerodynamics.md explains them).
 struct RotorAeroParams {
+  /// The law family of φ_i. With a closed form, φ_i comes from that law alone (the collective,
+  /// rotor-resolved and suck-down fields below are not used) and each rotor's increment scales
+  /// with its own thrust (β = 1); the fade, reaction torque, drag and in-flight fields apply
+  /// as with the calibrated law.
+  GroundEffectLaw law = GroundEffectLaw::kCalibrated;
+
   // --- Collective cushion (vehicle scale, no torque), Sanchez-Cuevas et al. 2017 -------------
   /// Body coefficient K_b of the Sanchez-Cuevas multirotor law (their fuselage term) [-].
   double body_coefficient = 2.177;
@@ -221,6 +248,11 @@ class RotorAerodynamics {
                                     const Eigen::Array4d& f_y,
                                     const Eigen::Array4d& q) const noexcept;
   [[nodiscard]] double collective(double z_mean) const noexcept;
+  /// groundFactors() for the closed-form law families (params_.law != kCalibrated).
+  [[nodiscard]] RotorGroundFactors closedFormFactors(
+      const std::array<double, 4>& ground_distance_m) const noexcept;
+  /// φ of one rotor at distance z (already clamped) under a closed-form law [-].
+  [[nodiscard]] double closedFormFraction(double z) const noexcept;
   /// The rotor-resolved law l(z) = num/den of four distances at once (one SIMD lane per rotor).
   void rotorResolvedTerms(const Eigen::Array4d& z, Eigen::Array4d& num,
                           Eigen::Array4d& den) const noexcept;
@@ -244,6 +276,7 @@ class RotorAerodynamics {
   Eigen::Array4d a_z_ = Eigen::Array4d::Ones();
   bool tilted_ = false;
   bool lift_ = false;  // translational lift on (c > 0)
+  double beta_ = 0.0;  // share of the increment on the rotor's own n² (1 for closed forms)
   double inv_range_ = 0.0;  // 1/ground_effect_range_m
   // Precomputed from the geometry and the parameters.
   double image_num_ = 0.0;      // (R/4)²
