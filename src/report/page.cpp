@@ -105,6 +105,31 @@ nlohmann::ordered_json plotJson(const Plot& plot) {
   return {{"data", std::move(data)}, {"layout", std::move(layout)}};
 }
 
+// A heat map as plotly's {data, layout}: one heatmap trace, rows top to bottom.
+nlohmann::ordered_json heatMapJson(const HeatMap& map) {
+  nlohmann::ordered_json trace = {{"type", "heatmap"},
+                                  {"x", map.columns},
+                                  {"y", map.rows},
+                                  {"z", map.z},
+                                  {"colorscale", map.colorscale},
+                                  {"reversescale", map.reverse_scale},
+                                  {"colorbar", {{"title", {{"text", map.z_label}}}}},
+                                  {"hoverongaps", false}};
+  if (map.z_min < map.z_max) trace.update({{"zmin", map.z_min}, {"zmax", map.z_max}});
+  if (!map.text.empty()) {
+    trace["text"] = map.text;
+    trace["texttemplate"] = "%{text}";
+  }
+  nlohmann::ordered_json layout = {
+      {"title", {{"text", map.title}}},
+      {"xaxis", {{"title", {{"text", map.x_label}}}, {"type", "category"}}},
+      {"yaxis", {{"title", {{"text", map.y_label}}}, {"type", "category"}, {"autorange", "reversed"}}},
+      {"height", map.height_px},
+      {"margin", {{"l", 110}, {"r", 30}, {"t", 50}, {"b", 90}}},
+      {"font", {{"family", "system-ui, 'DejaVu Sans', Arial, sans-serif"}}}};
+  return {{"data", nlohmann::ordered_json::array({std::move(trace)})}, {"layout", std::move(layout)}};
+}
+
 std::string tableHtml(const Table& table) {
   std::string out = "<section class=\"table\">\n";
   if (!table.title.empty()) out += "<h3>" + escapeHtml(table.title) + "</h3>\n";
@@ -199,6 +224,31 @@ void Page::addPlot(Plot plot) {
   blocks_.emplace_back(std::move(plot));
 }
 
+void Page::addHeatMap(HeatMap map) {
+  const std::string where = "report::Page: heat map '" + map.title + "'";
+  if (map.height_px < kMinHeightPx || map.height_px > kMaxHeightPx) {
+    throw std::invalid_argument(where + ": height_px = " + std::to_string(map.height_px) +
+                                " is outside [" + std::to_string(kMinHeightPx) + ", " +
+                                std::to_string(kMaxHeightPx) + "]");
+  }
+  const auto check = [&](const auto& grid, const char* what) {
+    if (grid.size() != map.rows.size()) {
+      throw std::invalid_argument(where + ": " + what + " has " + std::to_string(grid.size()) +
+                                  " rows, the labels " + std::to_string(map.rows.size()));
+    }
+    for (std::size_t r = 0; r < grid.size(); ++r) {
+      if (grid[r].size() != map.columns.size()) {
+        throw std::invalid_argument(where + ": " + what + " row " + std::to_string(r) + " has " +
+                                    std::to_string(grid[r].size()) + " values, the columns " +
+                                    std::to_string(map.columns.size()));
+      }
+    }
+  };
+  check(map.z, "z");
+  if (!map.text.empty()) check(map.text, "text");
+  blocks_.emplace_back(std::move(map));
+}
+
 std::string Page::html(const std::string& plotly_js) const {
   // The library is inlined verbatim, so it must not contain anything that ends or nests the
   // <script> element (HTML spec 4.12.1.3). plotly.min.js has neither; check rather than assume.
@@ -224,7 +274,11 @@ std::string Page::html(const std::string& plotly_js) const {
             const std::string id = "geaware-plot-" + std::to_string(plot_count);
             body += "<figure class=\"plot\"><div class=\"plot-area\" id=\"" + id +
                     "\" style=\"height:" + std::to_string(b.height_px) + "px\"></div></figure>\n";
-            plots.push_back(plotJson(b));
+            if constexpr (std::is_same_v<B, HeatMap>) {
+              plots.push_back(heatMapJson(b));
+            } else {
+              plots.push_back(plotJson(b));
+            }
             ++plot_count;
           }
         },

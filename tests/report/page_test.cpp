@@ -302,3 +302,37 @@ TEST(ReportPage, InvalidContentIsRefusedWithTheReason) {
   EXPECT_THROW(page.addTable(Table{"t", {"a", "b"}, {{"1", "2"}, {"3"}}}), std::invalid_argument);
   EXPECT_NO_THROW(page.addTable(Table{"headerless", {}, {{"1"}, {"2", "3"}}}));
 }
+
+TEST(ReportPage, HeatMapCellsRoundTripRowsTopToBottom) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  geaware::report::HeatMap map;
+  map.title = "strikes";
+  map.columns = {"none:none", "recommended"};
+  map.rows = {"none", "mass+10%", "law <CB>"};
+  map.z = {{0.0, 1.5}, {5.0, kNaN}, {2.0, 0.0}};
+  map.text = {{"0/5", "1.5"}, {"5/5", "all struck"}, {"2/5", "0/5"}};
+  map.z_label = "strikes [-]";
+  map.z_max = 5.0;
+  Page page("heat");
+  page.addHeatMap(map);
+  const auto doc = geaware_test::json::parse(embeddedJson(page.html(kFakeLibrary)));
+  ASSERT_EQ(doc.array().size(), 1U);
+  const auto& trace = doc[0]["data"][0];
+  EXPECT_EQ(trace["type"].string(), "heatmap");
+  EXPECT_EQ(trace["y"][2].string(), "law <CB>");
+  EXPECT_EQ(trace["x"][1].string(), "recommended");
+  EXPECT_EQ(trace["z"][1][0].number(), 5.0);
+  EXPECT_TRUE(trace["z"][1][1].isNull());
+  EXPECT_EQ(trace["text"][1][1].string(), "all struck");
+  EXPECT_EQ(trace["zmax"].number(), 5.0);
+  EXPECT_EQ(doc[0]["layout"]["yaxis"]["autorange"].string(), "reversed");
+  // A row too short is refused with the heat map's name.
+  map.z[2].pop_back();
+  try {
+    page.addHeatMap(map);
+    FAIL() << "a short row was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("heat map 'strikes': z row 2"), std::string::npos)
+        << e.what();
+  }
+}

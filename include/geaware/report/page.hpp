@@ -35,6 +35,24 @@ struct Plot {
   bool equal_aspect = false;  ///< one unit as long on y as on x (x–y views of a trajectory)
 };
 
+/// A grid of coloured cells (plotly's heatmap trace), e.g. a result per case and controller.
+/// Rows are drawn top to bottom in the order given. Non-finite values are empty cells.
+struct HeatMap {
+  std::string title;
+  std::string x_label;
+  std::string y_label;
+  std::vector<std::string> columns;           ///< x labels, left to right
+  std::vector<std::string> rows;              ///< y labels, top to bottom
+  std::vector<std::vector<double>> z;         ///< [row][column]
+  std::vector<std::vector<std::string>> text; ///< [row][column] shown in each cell; empty: none
+  std::string z_label;                        ///< colour-bar title, with unit
+  std::string colorscale = "Viridis";         ///< a plotly colour-scale name
+  bool reverse_scale = false;                 ///< high values in the scale's first colour
+  double z_min = 0.0;  ///< colour range; z_min = z_max: the data's own range
+  double z_max = 0.0;
+  int height_px = 420;  ///< 100…4000
+};
+
 struct Table {
   std::string title;
   std::vector<std::string> header;
@@ -55,6 +73,9 @@ class Page {
   /// Throws std::invalid_argument naming the plot and series when x and y differ in length, or
   /// when mode, dash or height_px is not one of the documented values.
   void addPlot(Plot plot);
+  /// Throws std::invalid_argument naming the heat map when z or text does not have one row per
+  /// label and one value per column, or height_px is out of range.
+  void addHeatMap(HeatMap map);
 
   /// Writes one self-contained HTML file (plotting library inlined). Throws std::runtime_error
   /// naming the file when it cannot be written, and naming the plotly.js path when the library
@@ -75,7 +96,7 @@ class Page {
   struct Heading {
     std::string text;
   };
-  using Block = std::variant<Text, Heading, Table, Plot>;
+  using Block = std::variant<Text, Heading, Table, Plot, HeatMap>;
 
   std::string title_;
   std::vector<Block> blocks_;
