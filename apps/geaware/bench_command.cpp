@@ -16,6 +16,7 @@
 #include "geaware/experiments/campaign.hpp"
 #include "geaware/experiments/campaign_report.hpp"
 #include "geaware/experiments/campaign_summary.hpp"
+#include "geaware/experiments/robustness.hpp"
 #include "geaware/experiments/world_setup.hpp"
 #include "geaware/io/truth_file.hpp"
 #include "geaware/io/vehicle_file.hpp"
@@ -25,6 +26,7 @@ namespace geaware::cli {
 namespace {
 
 struct BenchOptions {
+  std::string suite = "table";  ///< "table" (the paper's campaign) or "robustness"
   std::string vehicle;
   std::string truth;
   int seeds = 5;
@@ -43,14 +45,48 @@ struct BenchOptions {
   bool quiet = false;
 };
 
+/// `--suite robustness` (experiments/robustness.hpp, docs/robustness.md).
+int runRobustnessSuite(const BenchOptions& o) {
+  experiments::RobustnessOptions c;
+  c.vehicle = o.vehicle.empty() ? io::builtinVehicle() : io::loadVehicleFile(o.vehicle);
+  c.world = o.truth.empty() ? experiments::defaultWorld(c.vehicle, o.vehicle.empty(), o.vehicle)
+                            : io::resolveTruth(o.truth, {});
+  c.seeds = o.seeds;
+  c.first_seed = o.first_seed;
+  c.jobs = o.jobs;
+  if (!o.no_cache) c.cache_dir = o.cache;
+  TerminalProgress progress("geaware bench", o.quiet);
+  c.progress = &progress;
+  const experiments::RobustnessResult r = experiments::runRobustness(c);
+  progress.end();
+  const io::RunInfo run = runInfo(r.seeds, {o.vehicle, truthInputFile(o.truth)});
+  std::FILE* human = o.json == "-" ? stderr : stdout;
+  fmt::print(human, "{}\nworld: {}\n{}", commandLine(), c.world->source,
+             experiments::formatRobustness(r));
+  std::fflush(human);
+  if (!o.json.empty()) writeJsonOutput(o.json, experiments::robustnessJson(r), run);
+  if (!o.report.empty()) {
+    const auto html = experiments::writeRobustnessReport(r, o.report, run, o.png);
+    std::cerr << "geaware bench: wrote " << html.string() << (o.png ? " and robustness.png" : "")
+              << "\n";
+  }
+  if (o.check) {
+    for (const auto& chk : r.checks) {
+      if (!chk.pass) return 3;
+    }
+  }
+  return 0;
+}
+
 int runBench(const BenchOptions& o) {
-  experiments::CampaignOptions c;
   if (o.truth_mismatch) {
     throw UsageError(
         "--truth-mismatch moved into the truth file: give --truth a truth file whose "
         "truth.per_flight_variation holds the bounds, e.g. --truth config/truths/ideal_varied.yaml "
         "(today's --truth-mismatch; docs/truth-file.md)");
   }
+  if (o.suite == "robustness") return runRobustnessSuite(o);
+  experiments::CampaignOptions c;
   c.vehicle = o.vehicle.empty() ? io::builtinVehicle() : io::loadVehicleFile(o.vehicle);
   c.world = o.truth.empty() ? experiments::defaultWorld(c.vehicle, o.vehicle.empty(), o.vehicle)
                             : io::resolveTruth(o.truth, {});
@@ -111,6 +147,12 @@ Runner addBenchCommand(CLI::App& app) {
       "bench",
       "The paper's experiments: calibrate on the virtual rigs, train the Neural-Lander baseline, "
       "fly Table I and the hover experiment over seeds, compare with the paper");
+  cmd->add_option("--suite", o->suite,
+                  "'table': the paper's Table I and hover experiment; 'robustness': every Table I "
+                  "configuration, indi:indi and recommended in worlds changed after the "
+                  "calibration (docs/robustness.md)")
+      ->check(CLI::IsMember({"table", "robustness"}))
+      ->capture_default_str();
   addVehicleOption(cmd, o->vehicle,
                    "vehicle YAML file (default: the built-in paper quadrotor); the controller gets it "
                    "with the parameters identified on the virtual rigs; without --truth the world is "
@@ -149,6 +191,11 @@ Runner addBenchCommand(CLI::App& app) {
   cmd->add_flag("--quiet", o->quiet, "no progress on stderr");
   cmd->parse_complete_callback([o]() {
     if (o->png && o->report.empty()) throw CLI::ValidationError("--png", "--png needs --report DIR");
+    if (o->suite == "robustness" &&
+        (!o->only.empty() || o->no_turbulence || o->ground_effect != "paper")) {
+      throw CLI::ValidationError("--suite", "--only, --no-turbulence and --ground-effect apply to "
+                                            "--suite table only");
+    }
   });
   return [o]() { return runBench(*o); };
 }
