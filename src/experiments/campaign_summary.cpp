@@ -169,16 +169,22 @@ std::string checksText(const CampaignResult& r) {
   const auto* e5 = r.experiment(5);
   const auto* e6 = r.experiment(6);
   const auto* e7 = r.experiment(7);
-  if (e1 && e5) {
-    s += fmt::format("  reduction of RMSE all, exp 5 vs exp 1: {:.1f} % (paper {:.1f} %)\n",
-                     100.0 * (1.0 - e5->rmse_all_cm.mean / e1->rmse_all_cm.mean),
-                     100.0 * (1.0 - 4.45 / 10.85));
-  }
-  if (e6 && e7) {
-    s += fmt::format("  reduction of RMSE all, exp 7 vs exp 6: {:.1f} % (paper {:.1f} %)\n",
-                     100.0 * (1.0 - e7->rmse_all_cm.mean / e6->rmse_all_cm.mean),
-                     100.0 * (1.0 - 6.97 / 12.74));
-  }
+  // A row with a struck flight has no comparable RMSE (its mean covers flights cut short).
+  const auto reduction = [&s](const ExperimentSummary* a, const ExperimentSummary* b,
+                              double paper_a_cm, double paper_b_cm) {
+    if (!a || !b) return;
+    const std::string what = fmt::format("  reduction of RMSE all, exp {} vs exp {}: ",
+                                         a->experiment.number, b->experiment.number);
+    const double paper = 100.0 * (1.0 - paper_a_cm / paper_b_cm);
+    if (a->crashes > 0 || b->crashes > 0) {
+      s += fmt::format("{}not comparable, a row struck (paper {:.1f} %)\n", what, paper);
+    } else {
+      s += fmt::format("{}{:.1f} % (paper {:.1f} %)\n", what,
+                       100.0 * (1.0 - a->rmse_all_cm.mean / b->rmse_all_cm.mean), paper);
+    }
+  };
+  reduction(e5, e1, 4.45, 10.85);
+  reduction(e7, e6, 6.97, 12.74);
   s += fmt::format("\n{} flights, {:.0f} s simulated, on {} thread{}; wall time {:.1f} s "
                    "(calibration {:.1f} s, Neural-Lander {:.1f} s, flights {:.1f} s)\n",
                    r.flights, r.simulated_s, r.threads, r.threads == 1 ? "" : "s", r.wall_s,

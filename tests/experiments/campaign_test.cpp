@@ -301,3 +301,53 @@ TEST(NeuralBaseline, WithoutACacheDirectoryNothingIsWritten) {
 
 }  // namespace
 }  // namespace geaware::experiments
+
+namespace geaware::experiments {
+namespace {
+
+ExperimentSummary row(int number, double rmse_all_cm, int crashes) {
+  ExperimentSummary e;
+  e.experiment.number = number;
+  e.seeds = {1, 2, 3};
+  e.rmse_all_cm.mean = rmse_all_cm;
+  e.rmse_xy_cm.mean = rmse_all_cm;
+  e.rmse_z_cm.mean = rmse_all_cm;
+  e.crashes = crashes;
+  return e;
+}
+
+const AcceptanceCheck& named(const std::vector<AcceptanceCheck>& checks, std::string_view start) {
+  for (const auto& c : checks) {
+    if (c.name.starts_with(start)) return c;
+  }
+  throw std::runtime_error("no check named " + std::string(start));
+}
+
+TEST(AcceptanceChecks, AStruckRowIsNotComparableAndNeverPasses) {
+  CampaignResult r;
+  // Exp 5 struck in one flight: its mean RMSE (0.1 cm over flights cut short) would "pass".
+  r.experiments = {row(1, 10.0, 0), row(2, 5.0, 0), row(3, 6.0, 0), row(4, 2.0, 0),
+                   row(5, 0.1, 1)};
+  const auto checks = acceptanceChecks(r);
+  const auto& c = named(checks, "exp 5 / exp 1");
+  EXPECT_FALSE(c.pass);
+  EXPECT_TRUE(std::isnan(c.value));
+  EXPECT_NE(c.name.find("struck in 1 of 3"), std::string::npos) << c.name;
+  EXPECT_FALSE(named(checks, "RMSE all: exp 5").pass);
+  // Exp 4 finished and is lower than the lowest finished of exps 1–3 (exp 2).
+  const auto& z = named(checks, "RMSE Z: exp 4 / lowest of exps 1–3 (exp 2)");
+  EXPECT_TRUE(z.pass);
+  EXPECT_DOUBLE_EQ(z.value, 2.0 / 5.0);
+}
+
+TEST(AcceptanceChecks, TheLowestComparisonRowIsAFinishedOne) {
+  CampaignResult r;
+  // Exp 2 has the lowest mean but struck: the comparison is against exp 3, the lowest finished.
+  r.experiments = {row(1, 10.0, 0), row(2, 1.0, 2), row(3, 6.0, 0), row(4, 3.0, 0)};
+  const auto& z = named(acceptanceChecks(r), "RMSE Z: exp 4 / lowest of exps 1–3 (exp 3)");
+  EXPECT_TRUE(z.pass);
+  EXPECT_DOUBLE_EQ(z.value, 0.5);
+}
+
+}  // namespace
+}  // namespace geaware::experiments
