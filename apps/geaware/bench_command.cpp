@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -27,6 +28,8 @@ namespace {
 
 struct BenchOptions {
   std::string suite = "table";  ///< "table" (the paper's campaign) or "robustness"
+  std::vector<std::string> cases;        ///< robustness: the cases to fly (empty: all)
+  std::vector<std::string> controllers;  ///< robustness: the configurations (empty: all)
   std::string vehicle;
   std::string truth;
   int seeds = 5;
@@ -45,12 +48,38 @@ struct BenchOptions {
   bool quiet = false;
 };
 
+/// The items of `all` named in `names`, in the order named; a UsageError naming `option` and
+/// the valid names for an unknown one.
+template <class T, class NameOf>
+std::vector<T> pick(const std::vector<T>& all, const std::vector<std::string>& names,
+                    const std::string& option, NameOf name_of) {
+  std::vector<T> out;
+  for (const auto& n : names) {
+    const auto it = std::find_if(all.begin(), all.end(), [&](const T& t) { return name_of(t) == n; });
+    if (it == all.end()) {
+      std::string valid;
+      for (const auto& t : all) valid += (valid.empty() ? "" : ", ") + name_of(t);
+      throw UsageError(option + " '" + n + "': expected one of " + valid);
+    }
+    out.push_back(*it);
+  }
+  return out;
+}
+
 /// `--suite robustness` (experiments/robustness.hpp, docs/robustness.md).
 int runRobustnessSuite(const BenchOptions& o) {
   experiments::RobustnessOptions c;
   c.vehicle = o.vehicle.empty() ? io::builtinVehicle() : io::loadVehicleFile(o.vehicle);
   c.world = o.truth.empty() ? experiments::defaultWorld(c.vehicle, o.vehicle.empty(), o.vehicle)
                             : io::resolveTruth(o.truth, {});
+  if (!o.cases.empty()) {
+    c.cells = pick(c.cells, o.cases, "--cases",
+                   [](const experiments::Perturbation& p) { return p.name; });
+  }
+  if (!o.controllers.empty()) {
+    c.controllers = pick(c.controllers, o.controllers, "--controllers",
+                         [](const experiments::SuiteController& k) { return k.name; });
+  }
   c.seeds = o.seeds;
   c.first_seed = o.first_seed;
   c.jobs = o.jobs;
@@ -153,6 +182,14 @@ Runner addBenchCommand(CLI::App& app) {
                   "calibration (docs/robustness.md)")
       ->check(CLI::IsMember({"table", "robustness"}))
       ->capture_default_str();
+  cmd->add_option("--cases", o->cases,
+                  "robustness: fly only these cases, comma separated (default: all; names in "
+                  "docs/robustness.md, e.g. none,mass+10%)")
+      ->delimiter(',');
+  cmd->add_option("--controllers", o->controllers,
+                  "robustness: fly only these configurations, comma separated (default: all; e.g. "
+                  "model:model_indi,recommended)")
+      ->delimiter(',');
   addVehicleOption(cmd, o->vehicle,
                    "vehicle YAML file (default: the built-in paper quadrotor); the controller gets it "
                    "with the parameters identified on the virtual rigs; without --truth the world is "
@@ -195,6 +232,9 @@ Runner addBenchCommand(CLI::App& app) {
         (!o->only.empty() || o->no_turbulence || o->ground_effect != "paper")) {
       throw CLI::ValidationError("--suite", "--only, --no-turbulence and --ground-effect apply to "
                                             "--suite table only");
+    }
+    if (o->suite != "robustness" && (!o->cases.empty() || !o->controllers.empty())) {
+      throw CLI::ValidationError("--cases", "--cases and --controllers need --suite robustness");
     }
   });
   return [o]() { return runBench(*o); };

@@ -177,12 +177,17 @@ std::vector<SuiteCheck> robustnessChecks(const RobustnessResult& r) {
   return out;
 }
 
+namespace {
+const char* plural(std::size_t n) { return n == 1 ? "" : "s"; }
+}  // namespace
+
 std::string formatRobustness(const RobustnessResult& r) {
   std::string s = fmt::format(
-      "Robustness suite: belief calibrated once on the unperturbed world; {} cases × {} "
-      "heights × {} controllers × {} seeds = {} flights. recommended = {} + additions.\n",
-      r.cases.size(), r.conditions.size(), r.controllers.size(), r.seeds.size(), r.flights,
-      r.recommended);
+      "Robustness suite: belief calibrated once on the unperturbed world; {} case{} × {} "
+      "height{} × {} controller{} × {} seed{} = {} flights. recommended = {} + additions.\n",
+      r.cases.size(), plural(r.cases.size()), r.conditions.size(), plural(r.conditions.size()),
+      r.controllers.size(), plural(r.controllers.size()), r.seeds.size(), plural(r.seeds.size()),
+      r.flights, r.recommended);
   s += "Each entry: mean all-RMSE of the finished flights [cm], '(k✕)' when k of them struck, "
        "'struck' when all did.\n";
   for (const auto& cond : r.conditions) {
