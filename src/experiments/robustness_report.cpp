@@ -22,8 +22,8 @@ int heatMapHeight(std::size_t rows) { return 160 + 28 * static_cast<int>(rows); 
 
 report::HeatMap strikesMap(const RobustnessResult& r, const SuiteCondition& cond) {
   report::HeatMap m;
-  m.title = fmt::format("Strikes, {:.2f} m / {:g} m/s (of {} flights per cell)", cond.height_m,
-                        cond.speed_mps, r.seeds.size());
+  m.title = fmt::format("Strikes, {:.2f} m / {:g} m/s (of {} flight{} per cell)", cond.height_m,
+                        cond.speed_mps, r.seeds.size(), r.seeds.size() == 1 ? "" : "s");
   m.x_label = "controller";
   m.y_label = "case";
   m.columns = r.controllers;

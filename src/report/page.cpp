@@ -122,8 +122,12 @@ nlohmann::ordered_json heatMapJson(const HeatMap& map) {
   }
   nlohmann::ordered_json layout = {
       {"title", {{"text", map.title}}},
-      {"xaxis", {{"title", {{"text", map.x_label}}}, {"type", "category"}}},
-      {"yaxis", {{"title", {{"text", map.y_label}}}, {"type", "category"}, {"autorange", "reversed"}}},
+      {"xaxis", {{"title", {{"text", map.x_label}}}, {"type", "category"}, {"automargin", true}}},
+      {"yaxis",
+       {{"title", {{"text", map.y_label}}},
+        {"type", "category"},
+        {"autorange", "reversed"},
+        {"automargin", true}}},
       {"height", map.height_px},
       {"margin", {{"l", 110}, {"r", 30}, {"t", 50}, {"b", 90}}},
       {"font", {{"family", "system-ui, 'DejaVu Sans', Arial, sans-serif"}}}};
