@@ -5,6 +5,7 @@
 #include <optional>
 #include <sstream>
 
+#include "geaware/io/input_file.hpp"
 #include "geaware/io/format_version.hpp"
 #include "geaware/experiments/world_setup.hpp"
 #include "geaware/io/height_map_file.hpp"
@@ -220,16 +221,8 @@ FlightScenario parseScenarioYaml(std::string_view yaml_text, const std::string& 
 }
 
 FlightScenario loadScenarioFile(const std::filesystem::path& file, const sim::World* truth_override) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec)) {
-    throw std::runtime_error(file.string() + (std::filesystem::exists(file, ec)
-                                                  ? ": not a regular file (expected a scenario YAML file)"
-                                                  : ": no such scenario file"));
-  }
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream text;
-  if (!in || !(text << in.rdbuf())) throw std::runtime_error(file.string() + ": cannot read scenario file");
-  return parseScenarioYaml(text.str(), file.string(), file.parent_path(), truth_override);
+  return parseScenarioYaml(io::readInputFile(file, "scenario file", "scenario YAML file"),
+                           file.string(), file.parent_path(), truth_override);
 }
 
 }  // namespace geaware::experiments

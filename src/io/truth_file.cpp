@@ -1,3 +1,4 @@
+#include "geaware/io/input_file.hpp"
 #include "geaware/io/truth_file.hpp"
 
 #include <fmt/format.h>
@@ -221,16 +222,7 @@ sim::World parseTruthYaml(std::string_view yaml_text, const std::string& source)
 }
 
 sim::World loadTruthFile(const std::filesystem::path& file) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec)) {
-    throw std::runtime_error(file.string() + (std::filesystem::exists(file, ec)
-                                                  ? ": not a regular file (expected a truth YAML file)"
-                                                  : ": no such truth file"));
-  }
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream text;
-  if (!in || !(text << in.rdbuf())) throw std::runtime_error(file.string() + ": cannot read truth file");
-  return parseTruthYaml(text.str(), file.string());
+  return parseTruthYaml(readInputFile(file, "truth file", "truth YAML file"), file.string());
 }
 
 std::string truthSectionYaml(const sim::World& world) {

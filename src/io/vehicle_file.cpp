@@ -1,3 +1,4 @@
+#include "geaware/io/input_file.hpp"
 #include "geaware/io/vehicle_file.hpp"
 
 #include <fstream>
@@ -42,16 +43,7 @@ model::VehicleParams parseVehicleYaml(std::string_view yaml_text, const std::str
 }
 
 model::VehicleParams loadVehicleFile(const std::filesystem::path& file) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec)) {
-    throw std::runtime_error(file.string() + (std::filesystem::exists(file, ec)
-                                                  ? ": not a regular file (expected a vehicle YAML file)"
-                                                  : ": no such vehicle file"));
-  }
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream text;
-  if (!in || !(text << in.rdbuf())) throw std::runtime_error(file.string() + ": cannot read vehicle file");
-  return parseVehicleYaml(text.str(), file.string());
+  return parseVehicleYaml(readInputFile(file, "vehicle file", "vehicle YAML file"), file.string());
 }
 
 std::string_view builtinVehicleYaml() noexcept { return detail::kBuiltinVehicleYaml; }

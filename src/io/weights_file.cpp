@@ -1,3 +1,4 @@
+#include "geaware/io/input_file.hpp"
 #include "geaware/io/weights_file.hpp"
 
 #include <yaml-cpp/yaml.h>
@@ -166,16 +167,7 @@ std::string weightsFileToYaml(const WeightsFile& file) {
 }
 
 WeightsFile readWeightsFile(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) {
-    throw std::runtime_error(path.string() + (std::filesystem::exists(path, ec)
-                                                  ? ": not a regular file (expected a weight file)"
-                                                  : ": no such weight file"));
-  }
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  if (!in || !(text << in.rdbuf())) throw std::runtime_error(path.string() + ": cannot read");
-  return parseWeightsFile(text.str(), path.string());
+  return parseWeightsFile(readInputFile(path, "weight file", "weight file"), path.string());
 }
 
 void writeWeightsFile(const std::filesystem::path& path, const WeightsFile& file) {
