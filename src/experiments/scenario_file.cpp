@@ -154,10 +154,16 @@ FlightScenario parseScenarioYaml(std::string_view yaml_text, const std::string& 
   auto traj_section = root.map("trajectory");
   s.trajectory = readTrajectory(traj_section);
 
-  if (root.valueIs("controller", "recommended")) {
+  if (root.isScalar("controller")) {
     // geaware's configuration (docs/controller.md) in place of the two switches.
-    (void)root.text("controller");
-    (void)control::parseConfiguration("recommended", s.controller);
+    const std::string name = root.text("controller");
+    if (name == "recommended") {
+      (void)control::parseConfiguration("recommended", s.controller);
+    } else {
+      root.problem("controller", "got '" + name +
+                                     "', expected 'recommended' or a map with acceleration "
+                                     "and torque");
+    }
   } else {
     auto ctrl = root.map("controller");
     const std::string acc = ctrl.choice("acceleration", {"none", "indi", "neural", "model"});

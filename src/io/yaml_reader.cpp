@@ -376,6 +376,14 @@ bool MapReader::valueIs(const std::string& key, std::string_view word) const {
   return false;
 }
 
+bool MapReader::isScalar(const std::string& key) const {
+  if (!valid_) return false;
+  for (const auto& kv : node_) {
+    if (kv.first.IsScalar() && kv.first.Scalar() == key) return kv.second.IsScalar();
+  }
+  return false;
+}
+
 void MapReader::problem(const std::string& key, const std::string& message) {
   ctx_.problem(ctx_.lineOf(pathOf(key)), pathOf(key), message);
 }

@@ -74,6 +74,8 @@ TEST(ScenarioFile, ControllerRecommendedSelectsGeawaresConfiguration) {
   const auto problems = problemsOf(replaced(text, "controller: recommended", "controller: best"));
   ASSERT_FALSE(problems.empty());
   EXPECT_EQ(problems[0].key, "controller");
+  EXPECT_NE(problems[0].message.find("expected 'recommended' or a map"), std::string::npos)
+      << problems[0].message;
 }
 
 TEST(ScenarioFile, CommittedExamplesLoad) {

@@ -84,6 +84,8 @@ class MapReader {
   /// Whether `key`'s value is the scalar `word` (e.g. `none`). Like has(), it does not mark the
   /// key as read: the caller reads it next, as text or as whatever else it may be.
   [[nodiscard]] bool valueIs(const std::string& key, std::string_view word) const;
+  /// Whether `key` is present with a scalar value (not a map or list). Does not mark it as read.
+  [[nodiscard]] bool isScalar(const std::string& key) const;
   /// Whether this reader has a map to read (false for a missing or non-map value, whose keys
   /// then read as placeholders without further problems).
   [[nodiscard]] bool valid() const noexcept { return valid_; }
