@@ -9,7 +9,8 @@
 //    the ±1.5 m × ±0.8 m lemniscate at 0.5 m and 1 m/s peak, turbulence and battery on.
 // The counter "x_real_time" is simulated seconds per wall second of the loop (set-up and
 // validation excluded), "x_real_time_cpu" per CPU second of the whole iteration. Argument 1: with
-// the log (the figure to quote); 0: without, to show what the log costs. Run:
+// the log (the figure to quote); 0: without, to show what the log costs. BM_FlightClosedLoop's
+// second argument: 0 the ideal world (the vehicle file's own), 1 the as-built world. Run:
 // build/bench/geaware_bench --benchmark_filter=Flight --benchmark_repetitions=5
 //      --benchmark_report_aggregates_only=true
 
@@ -17,11 +18,13 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "geaware/experiments/world_setup.hpp"
 #include "geaware/experiments/flight.hpp"
 #include "geaware/experiments/flight_log.hpp"
 #include "geaware/io/vehicle_file.hpp"
@@ -83,6 +86,9 @@ void BM_FlightSensorsAndPlant(benchmark::State& state) {
 }
 BENCHMARK(BM_FlightSensorsAndPlant)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
 
+/// Argument 1 of BM_FlightClosedLoop: the world flown in.
+enum World : std::int64_t { kIdealWorld = 0, kAsBuiltWorld = 1 };
+
 void BM_FlightClosedLoop(benchmark::State& state) {
   FlightScenario s;
   s.vehicle = geaware::io::builtinVehicle();
@@ -100,8 +106,20 @@ void BM_FlightClosedLoop(benchmark::State& state) {
   s.trajectory = std::make_shared<geaware::traj::Lemniscate>(lp);
   // Hover at the start for whatever the four laps leave of the minute.
   s.start_hover_s = std::max(0.0, kSimulatedSeconds - s.trajectory->duration());
+  // The ideal world is the vehicle file's own (sim::fromNominal, the runner's default for a
+  // scenario without a truth); the as-built world adds every effect of docs/world.md.
+  if (state.range(1) == kAsBuiltWorld) {
+    geaware::experiments::applyWorld(
+        s, geaware::experiments::defaultWorld(s.vehicle, true, "built-in"));
+  }
+  state.SetLabel(state.range(1) == kAsBuiltWorld ? "as-built world" : "ideal world");
   fly(state, s);
 }
-BENCHMARK(BM_FlightClosedLoop)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FlightClosedLoop)
+    ->Args({1, kIdealWorld})
+    ->Args({0, kIdealWorld})
+    ->Args({1, kAsBuiltWorld})
+    ->Args({0, kAsBuiltWorld})
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
