@@ -32,14 +32,10 @@ double turbulenceIntensity(const GroundTurbulenceParams& p, double height_m) noe
 GroundTurbulence::GroundTurbulence(const GroundTurbulenceParams& params,
                                    std::uint64_t scenario_seed)
     : params_(model::validated(params)),
-      noise_(scenario_seed, salt::kGroundTurbulence),
-      force_(params_.correlation_time_s, noise_),
-      torque_(params_.correlation_time_s, noise_) {}
+      unit_(params_.correlation_time_s, scenario_seed, salt::kGroundTurbulence) {}
 
 void GroundTurbulence::beginStep(double /*t_s*/, double dt_s, const PlantState& /*state*/) noexcept {
-  if (!(std::isfinite(dt_s) && dt_s >= 0.0)) return;
-  force_.advance(dt_s, noise_);
-  torque_.advance(dt_s, noise_);
+  unit_.advance(dt_s);
 }
 
 Wrench GroundTurbulence::wrenchAt(const std::array<double, 4>& d) const noexcept {
@@ -48,8 +44,8 @@ Wrench GroundTurbulence::wrenchAt(const std::array<double, 4>& d) const noexcept
   s *= 0.25;
   Wrench w;
   if (s > 0.0) {
-    w.force_B = s * params_.force_std_N.cwiseProduct(force_.value());
-    w.torque_B = s * params_.torque_std_Nm.cwiseProduct(torque_.value());
+    w.force_B = s * params_.force_std_N.cwiseProduct(unit_.force());
+    w.torque_B = s * params_.torque_std_Nm.cwiseProduct(unit_.torque());
   }
   return w;
 }
@@ -70,20 +66,16 @@ std::vector<model::FieldError> UnsteadinessParams::validate() const {
 
 Unsteadiness::Unsteadiness(const UnsteadinessParams& params, std::uint64_t scenario_seed)
     : params_(model::validated(params)),
-      noise_(scenario_seed, salt::kUnsteadiness),
-      force_(params_.correlation_time_s, noise_),
-      torque_(params_.correlation_time_s, noise_) {}
+      unit_(params_.correlation_time_s, scenario_seed, salt::kUnsteadiness) {}
 
 void Unsteadiness::beginStep(double /*t_s*/, double dt_s, const PlantState& /*state*/) noexcept {
-  if (!(std::isfinite(dt_s) && dt_s >= 0.0)) return;
-  force_.advance(dt_s, noise_);
-  torque_.advance(dt_s, noise_);
+  unit_.advance(dt_s);
 }
 
 Wrench Unsteadiness::wrench(const ContributionContext& /*ctx*/) noexcept {
   Wrench w;
-  w.force_B = params_.force_std_N * force_.value();
-  w.torque_B = params_.torque_std_Nm * torque_.value();
+  w.force_B = params_.force_std_N * unit_.force();
+  w.torque_B = params_.torque_std_Nm * unit_.torque();
   return w;
 }
 

@@ -153,6 +153,18 @@ bool SampleClock::due(double t_s) noexcept {
 GaussMarkov3::GaussMarkov3(double correlation_time_s, NoiseSource& noise) noexcept
     : tau_s_(correlation_time_s), x_(noise.normal3()) {}
 
+GaussMarkovWrench::GaussMarkovWrench(double correlation_time_s, std::uint64_t scenario_seed,
+                                     std::uint64_t stream_salt)
+    : noise_(scenario_seed, stream_salt),
+      force_(correlation_time_s, noise_),
+      torque_(correlation_time_s, noise_) {}
+
+void GaussMarkovWrench::advance(double dt_s) noexcept {
+  if (!(std::isfinite(dt_s) && dt_s >= 0.0)) return;
+  force_.advance(dt_s, noise_);
+  torque_.advance(dt_s, noise_);
+}
+
 const Eigen::Vector3d& GaussMarkov3::advance(double dt_s, NoiseSource& noise) noexcept {
   if (dt_s != last_dt_s_) {
     last_dt_s_ = dt_s;

@@ -79,9 +79,7 @@ class GroundTurbulence final : public Contribution {
 
  private:
   GroundTurbulenceParams params_;
-  NoiseSource noise_;
-  GaussMarkov3 force_;
-  GaussMarkov3 torque_;
+  GaussMarkovWrench unit_;  // unit-σ buffeting, scaled by σ_F, σ_τ and s(h)
 };
 
 struct UnsteadinessParams {
@@ -107,9 +105,7 @@ class Unsteadiness final : public Contribution {
 
  private:
   UnsteadinessParams params_;
-  NoiseSource noise_;
-  GaussMarkov3 force_;
-  GaussMarkov3 torque_;
+  GaussMarkovWrench unit_;  // unit-σ unsteadiness, scaled by σ_F, σ_τ
 };
 
 struct WindParams {

@@ -169,6 +169,24 @@ class GaussMarkov3 {
   Eigen::Vector3d x_;
 };
 
+/// A random body force and torque: two unit Gauss–Markov processes with one correlation time,
+/// drawn from one noise stream (the force's process first, at construction and at every step).
+/// The disturbances scale them by their own standard deviations.
+class GaussMarkovWrench {
+ public:
+  GaussMarkovWrench(double correlation_time_s, std::uint64_t scenario_seed,
+                    std::uint64_t stream_salt);
+  /// Advance by dt ≥ 0 [s]; a non-finite or negative dt leaves both unchanged.
+  void advance(double dt_s) noexcept;
+  [[nodiscard]] const Eigen::Vector3d& force() const noexcept { return force_.value(); }
+  [[nodiscard]] const Eigen::Vector3d& torque() const noexcept { return torque_.value(); }
+
+ private:
+  NoiseSource noise_;
+  GaussMarkov3 force_;
+  GaussMarkov3 torque_;
+};
+
 /// True when every field of the state is finite (sensors refuse anything else).
 [[nodiscard]] bool isFinite(const PlantState& state) noexcept;
 
