@@ -134,6 +134,23 @@ TEST(JsonOutput, BenchPrintsOnlyJsonWithNullForMissingNumbers) {
   EXPECT_FALSE(doc["calibration"]["parameters"].empty());
 }
 
+TEST(JsonOutput, RobustnessSuitePrintsOnlyJsonInTheSuiteSchema) {
+  // Two cells, two controllers, one seed: the suite schema parsed, not matched as text.
+  const Json doc = parse(geaware("bench --suite robustness --cases none,mass+10% --controllers "
+                                 "indi:none,recommended --seeds 1 --no-cache --quiet --json -"),
+                         "bench --suite robustness");
+  EXPECT_EQ(doc["suite"], "robustness");
+  ASSERT_TRUE(doc["cells"].is_array());
+  ASSERT_FALSE(doc["cells"].empty());
+  for (const auto& cell : doc["cells"]) {
+    EXPECT_TRUE(cell["case"] == "none" || cell["case"] == "mass+10%") << cell.dump();
+    EXPECT_TRUE(cell["controller"] == "indi:none" || cell["controller"] == "recommended");
+    EXPECT_TRUE(cell["strikes"].is_number_integer());
+    // All-RMSE is a number, or null when every flight of the cell struck.
+    EXPECT_TRUE(cell["rmse_all_cm"].is_number() || cell["strikes"] == cell["flights"]);
+  }
+}
+
 /// A scratch directory for the logs the rigs and `fly` write.
 fs::path scratch() {
   const fs::path dir = fs::temp_directory_path() / "geaware_json_output_test";
