@@ -3,7 +3,8 @@
 // inputs so that each can be tested alone:
 //   1. collectPoints: valid zones → 3-D points in the vehicle-centred, world-oriented frame;
 //   2. extractSurface, per surface: bestHypothesis (RANSAC with MSAC scoring), fitPlane
-//      (regularised least squares), keepZonePatches (8-connected support rule), fitPlane again;
+//      (regularised least squares), keepZonePatches (8-connected support rule, union-find),
+//      fitPlane again;
 //   3. surfaceUnder: the surface owning the supporting zone nearest to a vertical.
 // Fixed-size storage, no allocation.
 
@@ -41,9 +42,9 @@ struct Points {
   std::array<int, kN> label;          // surface index, kUnassigned or kDiscarded
   std::array<int, kN> point_of_zone;  // inverse of `zone`, −1 for unusable zones
   std::array<int, kN> pool;           // candidate point indices of the current RANSAC
-  std::array<int, kN> queue;          // BFS queue / component members
+  std::array<int, kN> parent;         // union-find parents of the zone patches
+  std::array<int, kN> component_size; // zones per patch, at each patch's root
   std::array<bool, kN> inlier;        // per point, for the current surface
-  std::array<bool, kN> seen;          // per point, BFS visited
   int n = 0;
 };
 
