@@ -20,6 +20,7 @@
 #include "geaware/experiments/flight_summary.hpp"
 #include "geaware/experiments/scenario_file.hpp"
 #include "geaware/experiments/world_setup.hpp"
+#include "geaware/io/output_file.hpp"
 #include "geaware/io/truth_file.hpp"
 #include "geaware/io/vehicle_file.hpp"
 #include "progress.hpp"
@@ -115,8 +116,23 @@ std::string title(const FlyOptions& o, const experiments::FlightScenario& s) {
   return t + ", controller " + experiments::controllerName(s.controller);
 }
 
+/// Every output checked before the flight: writable, not a directory or special file, not one
+/// of the inputs (also those the scenario file names: io::inputFilesRead), not each other.
+void checkFiles(const FlyOptions& o) {
+  io::OutputChecks files;
+  files.input("--scenario", o.scenario);
+  files.input("--vehicle", o.vehicle);
+  files.input("--truth", truthInputFile(o.truth));
+  files.input("--neural-weights", o.neural_weights);
+  files.output("--out", o.out, false);
+  files.output("--json", o.json);
+  files.directory("--report", o.report);
+  files.check();
+}
+
 int runFly(const FlyOptions& o) {
   const experiments::FlightScenario s = scenarioOf(o);
+  checkFiles(o);
   const io::RunInfo run =
       runInfo({s.seed}, {o.scenario, o.vehicle, truthInputFile(o.truth), o.neural_weights});
   experiments::ObserverList observers;

@@ -85,20 +85,11 @@ const std::vector<std::string_view>& flightLogColumns() {
 
 namespace {
 
-/// Opens (truncates) `file` and writes the comment lines that precede the header.
-std::FILE* openWithComment(const std::filesystem::path& file, std::string_view comment) {
-  std::FILE* f = std::fopen(file.c_str(), "wb");
-  if (f == nullptr) {
-    throw std::runtime_error(file.string() + ": cannot open for writing (" + std::strerror(errno) +
-                             ")");
-  }
+/// The comment lines that precede the header, each line ended.
+std::string commentLines(std::string_view comment) {
   std::string text(comment);
   if (!text.empty() && text.back() != '\n') text += '\n';
-  if (!text.empty() && std::fwrite(text.data(), 1, text.size(), f) != text.size()) {
-    std::fclose(f);
-    throw std::runtime_error(file.string() + ": write failed");
-  }
-  return f;
+  return text;
 }
 
 }  // namespace
@@ -106,14 +97,13 @@ std::FILE* openWithComment(const std::filesystem::path& file, std::string_view c
 CsvFlightLog::CsvFlightLog(const std::filesystem::path& file, const model::VehicleParams& vehicle,
                            std::string_view header_comment)
     : path_(file),
-      stream_(openWithComment(file, header_comment)),
-      csv_(stream_, file.string(), flightLogColumns()),
+      file_(file.string(), "the flight log"),
+      csv_((file_.write(commentLines(header_comment)), file_.stream()), "the flight log '" + file.string() + "'",
+           flightLogColumns()),
       k_T_N_per_rpm2_(vehicle.rotor.k_T_N_per_rpm2),
       mass_kg_(vehicle.mass_kg) {}
 
-CsvFlightLog::~CsvFlightLog() {
-  if (stream_ != nullptr) std::fclose(stream_);
-}
+CsvFlightLog::~CsvFlightLog() = default;
 
 void CsvFlightLog::onTick(const FlightTick& k) noexcept {
   RowWriter w(csv_);
@@ -182,10 +172,7 @@ void CsvFlightLog::finish(const FlightResult& /*result*/) { close(); }
 
 void CsvFlightLog::close() {
   csv_.close();
-  if (stream_ == nullptr) return;
-  const int rc = std::fclose(stream_);
-  stream_ = nullptr;
-  if (rc != 0) throw std::runtime_error(path_.string() + ": write failed");
+  file_.commit();
 }
 
 }  // namespace geaware::experiments

@@ -288,10 +288,9 @@ NeuralBaseline prepareNeuralBaseline(const FlightScenario& base, const NeuralSet
     doc.provenance["cache_key"] = key;
     doc.provenance["rows"] = std::to_string(nb.rows);
     doc.provenance["final_validation_loss_N2"] = num(nb.validation_loss_N2);
-    // Write to a temporary name and rename, so a concurrent reader never sees half a file.
-    const auto tmp = nb.file.string() + ".tmp";
-    neural::saveWeights(tmp, doc);
-    std::filesystem::rename(tmp, nb.file);
+    // Written through a temporary file and renamed (io::AtomicFile), so a concurrent reader
+    // never sees half a file.
+    neural::saveWeights(nb.file, doc);
   }
   nb.wall_s = elapsed();
   say(fmt::format("Neural-Lander: trained in {:.1f} s (validation MSE {:.4f} N² per component)",

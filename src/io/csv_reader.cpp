@@ -1,5 +1,6 @@
 #include "geaware/io/csv_reader.hpp"
 
+#include "geaware/io/input_file.hpp"
 #include "text.hpp"
 
 #include <algorithm>
@@ -106,6 +107,7 @@ struct CsvReader::Impl {
         const void* nl = std::memchr(start, '\n', end - begin);
         if (nl != nullptr) {
           const auto len = static_cast<std::size_t>(static_cast<const char*>(nl) - start);
+          if (len > kMaxLineBytes) fail(line_no + 1, "", lineTooLong(std::string_view(start, len)));
           begin += len + 1;
           consumed += len + 1;
           ++line_no;
@@ -113,6 +115,7 @@ struct CsvReader::Impl {
         }
         if (eof) {  // last line without a terminator
           const std::string_view rest(start, end - begin);
+          if (rest.size() > kMaxLineBytes) fail(line_no + 1, "", lineTooLong(rest));
           begin = end;
           consumed += rest.size();
           ++line_no;
@@ -126,6 +129,9 @@ struct CsvReader::Impl {
         std::memmove(buffer.data(), buffer.data() + begin, end - begin);
         end -= begin;
         begin = 0;
+      }
+      if (end - begin > kMaxLineBytes) {
+        fail(line_no + 1, "", lineTooLong(std::string_view(buffer.data() + begin, end - begin)));
       }
       if (end == buffer.size()) buffer.resize(buffer.size() * 2);
       const std::size_t got = std::fread(buffer.data() + end, 1, buffer.size() - end, file);
@@ -311,6 +317,7 @@ CsvReader::CsvReader(const std::filesystem::path& file, CsvReadOptions options)
     : impl_(std::make_unique<Impl>()) {
   impl_->source = file.string();
   impl_->options = std::move(options);
+  noteInputFile(file, "CSV file");
   impl_->file = std::fopen(file.c_str(), "rb");
   if (impl_->file == nullptr) {
     throw CsvError(impl_->source, 0, "", std::string("cannot open: ") + std::strerror(errno));

@@ -1,5 +1,7 @@
 #include "geaware/io/csv_writer.hpp"
 
+#include "geaware/io/output_file.hpp"
+
 #include <fmt/compile.h>
 #include <fmt/format.h>
 
@@ -18,10 +20,8 @@ constexpr std::size_t kCellReserve = 64;
 }  // namespace
 
 CsvWriter::CsvWriter(const std::filesystem::path& file, std::span<const std::string_view> columns)
-    : name_(file.string()), file_(std::fopen(file.c_str(), "wb")), owned_(true) {
-  if (file_ == nullptr) {
-    throw std::runtime_error(name_ + ": cannot open for writing (" + std::strerror(errno) + ")");
-  }
+    : name_(file.string()), atomic_(std::make_unique<AtomicFile>(file.string(), "the CSV file")), owned_(true) {
+  file_ = atomic_->stream();
   writeHeader(columns);
 }
 
@@ -32,9 +32,8 @@ CsvWriter::CsvWriter(std::FILE* stream, std::string name, std::span<const std::s
 }
 
 CsvWriter::~CsvWriter() {
-  if (file_ == nullptr) return;
+  if (file_ == nullptr || owned_) return;  // an owned, unclosed file is discarded by atomic_
   flush();
-  if (owned_) std::fclose(file_);
 }
 
 void CsvWriter::writeHeader(std::span<const std::string_view> columns) {
@@ -52,7 +51,10 @@ void CsvWriter::writeHeader(std::span<const std::string_view> columns) {
 
 void CsvWriter::flush() noexcept {
   if (used_ == 0 || file_ == nullptr) return;
-  if (std::fwrite(buffer_.data(), 1, used_, file_) != used_) failed_ = true;
+  if (std::fwrite(buffer_.data(), 1, used_, file_) != used_ && !failed_) {
+    failed_ = true;
+    errno_ = errno;
+  }
   used_ = 0;
 }
 
@@ -92,18 +94,24 @@ void CsvWriter::endRow() noexcept {
 
 void CsvWriter::close() {
   if (file_ == nullptr) {
-    if (failed_) throw std::runtime_error(name_ + ": write failed");
+    if (failed_) throw std::runtime_error(name_ + ": cannot write: " + std::strerror(errno_));
     return;
   }
   flush();
-  bool bad = failed_ || std::ferror(file_) != 0;
-  if (owned_) {
-    if (std::fclose(file_) != 0) bad = true;
-  } else if (std::fflush(file_) != 0) {
-    bad = true;
-  }
+  std::FILE* stream = file_;
   file_ = nullptr;
-  if (bad) throw std::runtime_error(name_ + ": write failed");
+  bool bad = failed_ || std::ferror(stream) != 0;
+  if (bad && errno_ == 0) errno_ = errno != 0 ? errno : EIO;
+  if (owned_) {
+    if (bad) {
+      throw std::runtime_error(name_ + ": cannot write: " + std::strerror(errno_) +
+                               " (the existing file, if any, is unchanged)");
+    }
+    atomic_->commit();  // throws OutputError naming the file on a write, flush or rename failure
+    return;
+  }
+  if (std::fflush(stream) != 0 && !failed_) errno_ = errno;
+  if (bad || errno_ != 0) throw std::runtime_error(name_ + ": cannot write: " + std::strerror(errno_));
 }
 
 }  // namespace geaware::io

@@ -2,12 +2,14 @@
 // '#'-comment header, read into a model::HeightGrid that sim::HeightMap is built from.
 #include "geaware/io/height_map_file.hpp"
 
+#include "geaware/io/input_file.hpp"
 #include "text.hpp"
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <fstream>
+#include <sstream>
+#include <stdexcept>
 #include <optional>
 #include <string_view>
 #include <system_error>
@@ -68,8 +70,16 @@ HeightMapFileError::HeightMapFileError(std::string file, int line, int column,
       column_(column) {}
 
 model::HeightGrid readHeightMapFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw HeightMapFileError(path, 0, 0, "cannot open the height-map file");
+  std::string bytes;
+  try {
+    bytes = readInputFile(path, "height-map file", "height-map text file");  // lines under 1 MiB
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    const std::string prefix = path + ": ";
+    if (what.starts_with(prefix)) throw HeightMapFileError(path, 0, 0, what.substr(prefix.size()));
+    throw;  // "<path>:<line>: line longer than 1 MiB …"
+  }
+  std::istringstream in(std::move(bytes));
   std::optional<double> origin_x;
   std::optional<double> origin_y;
   std::optional<double> cell;

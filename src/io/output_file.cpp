@@ -8,6 +8,8 @@
 #include <cstring>
 #include <system_error>
 
+#include "geaware/io/input_file.hpp"
+
 namespace geaware::io {
 
 namespace fs = std::filesystem;
@@ -82,8 +84,43 @@ OutputPath checkOutputPath(std::string_view option, const std::string& path, boo
   return out;
 }
 
-void OutputChecks::input(const std::string& path) {
-  if (!path.empty() && path != "-") inputs_.push_back(path);
+OutputPath checkOutputDirectory(std::string_view option, const std::string& path) {
+  OutputPath out{std::string(option), path, {}, false};
+  if (path.empty()) refuse(option, path, "empty path; expected a directory");
+  std::error_code ec;
+  const fs::path given(path);
+  const fs::file_status st = fs::status(given, ec);
+  fs::path existing = fs::absolute(given, ec);
+  if (fs::exists(st)) {
+    if (!fs::is_directory(st)) refuse(option, path, "exists and is not a directory; expected a directory");
+    out.target = fs::canonical(given, ec);
+    if (ec) refuse(option, path, "cannot resolve the path: " + ec.message());
+    existing = out.target;
+  } else {
+    if (fs::is_symlink(fs::symlink_status(given, ec))) {
+      refuse(option, path, "a symbolic link to a missing directory; give the directory itself");
+    }
+    out.target = fs::weakly_canonical(existing, ec);
+    // The nearest ancestor that exists is where the directory will be created.
+    while (!fs::exists(existing, ec) && existing.has_parent_path() && existing != existing.parent_path()) {
+      existing = existing.parent_path();
+    }
+    if (!fs::is_directory(existing, ec)) {
+      refuse(option, path, inQuotes(existing.string()) + " is not a directory; cannot create the directory in it");
+    }
+  }
+  fs::path probe;
+  const int fd = makeTemporary(existing / "probe", probe);
+  if (fd < 0) {
+    refuse(option, path, "cannot create a file in " + inQuotes(existing.string()) + ": " + std::strerror(errno));
+  }
+  ::close(fd);
+  fs::remove(probe, ec);
+  return out;
+}
+
+void OutputChecks::input(std::string_view option, const std::string& path) {
+  if (!path.empty() && path != "-") inputs_.push_back({std::string(option), path});
 }
 
 void OutputChecks::output(std::string_view option, const std::string& path, bool stdout_allowed) {
@@ -91,8 +128,25 @@ void OutputChecks::output(std::string_view option, const std::string& path, bool
   outputs_.push_back(checkOutputPath(option, path, stdout_allowed));
 }
 
-void OutputChecks::check() const {
+void OutputChecks::directory(std::string_view option, const std::string& path) {
+  if (path.empty()) return;
+  directories_.push_back(checkOutputDirectory(option, path));
+}
+
+namespace {
+
+/// Whether the output `out` is the file `in` (an existing output by identity, a new one by
+/// its resolved path).
+bool sameFile(const OutputPath& out, const fs::path& in) {
   std::error_code ec;
+  if (!fs::exists(in, ec)) return false;
+  if (fs::exists(out.target, ec)) return fs::equivalent(out.target, in, ec) && !ec;
+  return fs::weakly_canonical(fs::absolute(in, ec), ec) == out.target && !ec;
+}
+
+}  // namespace
+
+void OutputChecks::check() const {
   for (std::size_t i = 0; i < outputs_.size(); ++i) {
     const OutputPath& out = outputs_[i];
     for (std::size_t j = 0; j < i; ++j) {
@@ -107,12 +161,23 @@ void OutputChecks::check() const {
       }
     }
     if (out.to_stdout) continue;
-    for (const std::string& in : inputs_) {
-      const bool same = fs::exists(out.target, ec) ? fs::equivalent(out.target, in, ec)
-                                                   : fs::weakly_canonical(fs::absolute(in, ec), ec) == out.target;
-      if (same && !ec) {
-        refuse(out.option, out.given, "is the input file " + inQuotes(in) +
+    for (const OutputPath& dir : directories_) {
+      if (out.target == dir.target) {
+        refuse(out.option, out.given, "is the directory of " + dir.option + " " + inQuotes(dir.given) +
+                                          "; give each output its own path");
+      }
+    }
+    for (const Input& in : inputs_) {
+      if (sameFile(out, in.path)) {
+        refuse(out.option, out.given, "is the same file as the input " + in.option + " " + inQuotes(in.path) +
                                           "; writing it would destroy the input — choose another output path");
+      }
+    }
+    for (const InputFileRead& in : inputFilesRead()) {
+      if (sameFile(out, in.path)) {
+        refuse(out.option, out.given, "is the " + in.noun + " " + inQuotes(in.path.string()) +
+                                          " this run reads; writing it would destroy the input — choose "
+                                          "another output path");
       }
     }
   }
@@ -160,6 +225,12 @@ void AtomicFile::commit() {
   std::FILE* f = file_;
   file_ = nullptr;
   if (std::fclose(f) != 0) fail("write", errno);
+  // Never rename over anything but a regular file (it may have changed since the check).
+  struct stat now {};
+  if (::lstat(out_.target.c_str(), &now) == 0 && !S_ISREG(now.st_mode)) {
+    throw OutputError("cannot replace " + what_ + " " + inQuotes(out_.given) +
+                      ": it is no longer a regular file; nothing was written");
+  }
   if (std::rename(temp_.c_str(), out_.target.c_str()) != 0) fail("replace", errno);
   committed_ = true;
 }

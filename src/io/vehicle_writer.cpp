@@ -1,5 +1,7 @@
 #include "geaware/io/vehicle_writer.hpp"
 
+#include "geaware/io/output_file.hpp"
+
 #include <algorithm>
 #include <exception>
 #include <fstream>
@@ -199,16 +201,7 @@ MergeResult writeVehicleFile(const std::filesystem::path& base, const std::files
 MergeResult writeVehicleFile(std::string_view base_text, const std::string& base_name,
                              const std::filesystem::path& out, const VehicleUpdate& update) {
   MergeResult result = mergeVehicleYaml(base_text, base_name, update);
-  std::filesystem::path tmp = out;
-  tmp += ".tmp";
-  {
-    std::ofstream os(tmp, std::ios::binary | std::ios::trunc);
-    if (!os) throw std::runtime_error("cannot write " + tmp.string());
-    os << result.yaml;
-    os.close();
-    if (!os) throw std::runtime_error("cannot write " + tmp.string());
-  }
-  std::filesystem::rename(tmp, out);
+  writeFileAtomically(out.string(), result.yaml, "the vehicle file");
   return result;
 }
 

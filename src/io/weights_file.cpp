@@ -1,6 +1,8 @@
 #include "geaware/io/input_file.hpp"
 #include "geaware/io/weights_file.hpp"
 
+#include "geaware/io/output_file.hpp"
+
 #include <yaml-cpp/yaml.h>
 
 #include <charconv>
@@ -172,10 +174,7 @@ WeightsFile readWeightsFile(const std::filesystem::path& path) {
 
 void writeWeightsFile(const std::filesystem::path& path, const WeightsFile& file) {
   const std::string text = weightsFileToYaml(file);
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out || !(out << text) || !out.flush()) {
-    throw std::runtime_error(path.string() + ": cannot write the weight file");
-  }
+  writeFileAtomically(path.string(), text, "the weight file");
 }
 
 }  // namespace geaware::io

@@ -2,7 +2,9 @@
 // log is an error naming the file, the line and the column.
 
 #include "geaware/io/csv_reader.hpp"
+#include "geaware/io/input_file.hpp"
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -78,6 +80,28 @@ TEST_F(CsvReading, SmallBuffersGrowForLongLines) {
   const auto t = readCsv(file(text), o);
   EXPECT_EQ(t.rows(), 100u);
   EXPECT_EQ(t.column("t_s").back(), 99.0);
+}
+
+// A line over 1 MiB is refused at its line, echoing at most 80 characters: /dev/zero and a
+// 300 MB file without a newline (sparse) fail within a second, reading about 1 MiB.
+TEST_F(CsvReading, LinesOverOneMebibyteAreRefusedQuickly) {
+  expectError("t_s,a,b\n0,1,2\n" + std::string(geaware::io::kMaxLineBytes + 10, '7') + "\n", 3, "",
+              "line longer than 1 MiB (starts '7777");
+  const auto huge = dir_ / "huge.csv";
+  { std::ofstream(huge) << "t_s,a,b\n"; }
+  std::filesystem::resize_file(huge, 300'000'000);
+  for (const std::filesystem::path& f : {std::filesystem::path("/dev/zero"), huge}) {
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      (void)readCsv(f, threeColumns());
+      ADD_FAILURE() << f;
+    } catch (const CsvError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("line longer than 1 MiB (starts '\\x00\\x00"), std::string::npos) << what;
+      EXPECT_LT(what.size(), 500u) << "the line is not echoed whole";
+    }
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(1)) << f;
+  }
 }
 
 TEST_F(CsvReading, StreamsRowByRow) {

@@ -80,7 +80,7 @@ TEST_F(HeightMapFile, RejectsBadHeaders) {
                   4, 0, "after the first data row");
   expectFileError(write("small.csv", std::string(kHeader) + "0, 0, 0\n"), 0, 0,
                   "at least 2 rows of 2");
-  expectFileError(::testing::TempDir() + "geaware_does_not_exist.csv", 0, 0, "cannot open");
+  expectFileError(::testing::TempDir() + "geaware_does_not_exist.csv", 0, 0, "no such height-map file");
 }
 
 TEST_F(HeightMapFile, FormatVersionIsOptionalAndChecked) {

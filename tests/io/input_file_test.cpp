@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -34,6 +35,26 @@ TEST(InputFile, ReturnsTheBytesUnchanged) {
   const std::string bytes = std::string("mass_kg: 1.5\r\n\0tail", 20);
   std::ofstream(f, std::ios::binary) << bytes;
   EXPECT_EQ(readInputFile(f, "vehicle file", "vehicle YAML file"), bytes);
+}
+
+// A line over 1 MiB is refused with its line number and at most 80 characters of it; a 300 MB
+// file without a newline (sparse) fails within a second, without reading it whole.
+TEST(InputFile, LinesOverOneMebibyteAreRefusedQuickly) {
+  const auto f = tempDir() / "long.yaml";
+  std::ofstream(f, std::ios::binary) << "a: 1\nb: 2\nc: " << std::string(kMaxLineBytes, 'x') << "\n";
+  const std::string msg = errorOf(f);
+  EXPECT_EQ(msg.rfind(f.string() + ":3: line longer than 1 MiB (starts 'c: xxx", 0), 0u) << msg;
+  EXPECT_LT(msg.size(), f.string().size() + 200);
+  const auto huge = tempDir() / "huge.yaml";
+  { std::ofstream(huge) << "a: "; }
+  std::filesystem::resize_file(huge, 300'000'000);
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_NE(errorOf(huge).find(":1: line longer than 1 MiB (starts 'a: \\x00"), std::string::npos);
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(1));
+  std::filesystem::remove(huge);
+  // Exactly at the limit is fine.
+  std::ofstream(f, std::ios::binary) << std::string(kMaxLineBytes, 'x') << "\n";
+  EXPECT_EQ(errorOf(f), "");
 }
 
 TEST(InputFile, MissingFileAndDirectoryAreNamedErrors) {

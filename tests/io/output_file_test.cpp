@@ -1,5 +1,6 @@
 // Output files: checked before work, written whole or not at all, inputs never overwritten.
 #include "geaware/io/output_file.hpp"
+#include "geaware/io/input_file.hpp"
 
 #include <gtest/gtest.h>
 #include <sys/resource.h>
@@ -14,6 +15,7 @@
 
 namespace fs = std::filesystem;
 using geaware::io::AtomicFile;
+using geaware::io::checkOutputDirectory;
 using geaware::io::checkOutputPath;
 using geaware::io::OutputChecks;
 using geaware::io::OutputError;
@@ -123,11 +125,12 @@ TEST_F(OutputFileTest, OutputThatIsAnInputIsRefusedByIdentity) {
   const std::string other_name = (dir_ / "." / "rotor.csv").string();
   for (const std::string& out : {path("rotor.csv"), path("hard.csv"), path("soft.csv"), other_name}) {
     OutputChecks checks;
-    checks.input(path("rotor.csv"));
+    checks.input("log", path("rotor.csv"));
     checks.output("--out", out);
     const std::string msg = errorOf([&] { checks.check(); });
     EXPECT_NE(msg.find("destroy the input"), std::string::npos) << out;
-    EXPECT_NE(msg.find("--out"), std::string::npos) << out;
+    EXPECT_NE(msg.find("--out '" + out + "'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("the input log '" + path("rotor.csv") + "'"), std::string::npos) << msg;
   }
   EXPECT_EQ(get(path("rotor.csv")), "rpm,thrust_N\n");
 }
@@ -138,7 +141,7 @@ TEST_F(OutputFileTest, TwoOutputsOnOneFileAreRefused) {
   checks.output("--json", path("x.csv"));
   EXPECT_NE(errorOf([&] { checks.check(); }).find("same file as --out"), std::string::npos);
   OutputChecks fine;
-  fine.input(path("absent-input.yaml"));
+  fine.input("--vehicle", path("absent-input.yaml"));
   fine.output("--out", path("x.csv"));
   fine.output("--json", path("y.json"));
   EXPECT_NO_THROW(fine.check());
@@ -169,6 +172,45 @@ TEST_F(OutputFileTest, FullDiskIsAnErrorAndLeavesTargetUntouched) {
   EXPECT_NE(msg.find("unchanged"), std::string::npos) << msg;
   EXPECT_EQ(get(path("out.csv")), "precious");
   EXPECT_EQ(entries(), 1u);
+}
+
+TEST_F(OutputFileTest, AFileReadAsInputIsRefusedAsAnOutput) {
+  put(path("nested.yaml"), "mass: 1");
+  geaware::io::noteInputFile(path("nested.yaml"), "vehicle file");
+  OutputChecks checks;
+  checks.output("--json", path("nested.yaml"));
+  const std::string msg = errorOf([&] { checks.check(); });
+  EXPECT_NE(msg.find("is the vehicle file"), std::string::npos) << msg;
+  EXPECT_EQ(get(path("nested.yaml")), "mass: 1");
+}
+
+TEST_F(OutputFileTest, OutputDirectoriesAreCheckedBeforeWork) {
+  put(path("file"), "x");
+  EXPECT_NE(errorOf([&] { (void)checkOutputDirectory("--report", path("file")); }).find("not a directory"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { (void)checkOutputDirectory("--report", path("file/sub")); }).find("not a directory"),
+            std::string::npos);
+  EXPECT_NO_THROW((void)checkOutputDirectory("--report", path("new/deeper")));
+  EXPECT_FALSE(fs::exists(path("new"))) << "the check creates nothing";
+  EXPECT_EQ(checkOutputDirectory("--report", dir_.string()).target, fs::canonical(dir_));
+  OutputChecks checks;
+  checks.directory("--report", path("r"));
+  checks.output("--out", path("r"));
+  EXPECT_NE(errorOf([&] { checks.check(); }).find("is the directory of --report"), std::string::npos);
+  if (::geteuid() == 0) return;
+  fs::permissions(dir_, fs::perms::owner_read | fs::perms::owner_exec);
+  EXPECT_NE(errorOf([&] { (void)checkOutputDirectory("--cache", path("c")); }).find("cannot create a file"),
+            std::string::npos);
+}
+
+// Between the check and the commit the target became a FIFO: the rename is refused, the FIFO
+// stays.
+TEST_F(OutputFileTest, NeverRenamesOverANonRegularFile) {
+  AtomicFile f(path("out.csv"), "the log");
+  f.write("data");
+  ASSERT_EQ(::mkfifo(path("out.csv").c_str(), 0600), 0);
+  EXPECT_NE(errorOf([&] { f.commit(); }).find("no longer a regular file"), std::string::npos);
+  EXPECT_TRUE(fs::is_fifo(path("out.csv")));
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 
 #include "geaware/experiments/flight.hpp"
 #include "geaware/io/csv_writer.hpp"
+#include "geaware/io/output_file.hpp"
 
 namespace geaware::experiments {
 
@@ -27,9 +28,10 @@ namespace geaware::experiments {
 /// Streams the ticks of a flight to a CSV file.
 class CsvFlightLog final : public FlightObserver {
  public:
-  /// Opens (truncates) `file` and writes `header_comment` (lines starting "# ", e.g.
-  /// io::provenanceComment) and the header; throws std::runtime_error naming the file when it
-  /// cannot be opened. `vehicle` is the controller's (nominal) vehicle: its mass and k_T give the
+  /// Writes `file` through an io::AtomicFile (an existing file is replaced only by finish()/
+  /// close(); a flight that throws leaves it untouched), beginning with `header_comment` (lines
+  /// starting "# ", e.g. io::provenanceComment) and the header; throws std::runtime_error naming
+  /// the file when it cannot be written. `vehicle` is the controller's (nominal) vehicle: its mass and k_T give the
   /// external-acceleration columns that `geaware identify flight` reads.
   CsvFlightLog(const std::filesystem::path& file, const model::VehicleParams& vehicle,
                std::string_view header_comment = {});
@@ -40,7 +42,8 @@ class CsvFlightLog final : public FlightObserver {
   /// Formats one row into the buffer; writes the buffer out when it is nearly full. A write
   /// error is remembered and reported by finish()/close(). No allocation.
   void onTick(const FlightTick& tick) noexcept override;
-  /// Flushes and closes; throws std::runtime_error naming the file on any write error.
+  /// Flushes and commits the file; throws std::runtime_error naming the file on any write error
+  /// (the existing file, if any, is then unchanged).
   void finish(const FlightResult& result) override;
   void close();
 
@@ -49,7 +52,7 @@ class CsvFlightLog final : public FlightObserver {
 
  private:
   std::filesystem::path path_;
-  std::FILE* stream_ = nullptr;  // owned; the comment lines are written before the header
+  io::AtomicFile file_;  // the comment lines are written before the header
   io::CsvWriter csv_;            // buffered; rows are formatted into its fixed buffer
   double k_T_N_per_rpm2_;
   double mass_kg_;

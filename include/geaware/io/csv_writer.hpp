@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <initializer_list>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
@@ -23,10 +24,13 @@
 
 namespace geaware::io {
 
+class AtomicFile;
+
 class CsvWriter {
  public:
-  /// Opens (truncates) `file` and writes the header; throws std::runtime_error naming the file
-  /// when it cannot be opened.
+  /// Writes `file` through an io::AtomicFile (a temporary file renamed over it by close(); a
+  /// writer destroyed before close() leaves an existing file untouched) and writes the header;
+  /// throws std::runtime_error naming the file when it cannot be written.
   CsvWriter(const std::filesystem::path& file, std::span<const std::string_view> columns);
   CsvWriter(const std::filesystem::path& file, std::initializer_list<std::string_view> columns)
       : CsvWriter(file, std::span<const std::string_view>(columns.begin(), columns.size())) {}
@@ -56,7 +60,7 @@ class CsvWriter {
     endRow();
   }
 
-  /// Writes out the buffer; closes the file when it owns it. Throws std::runtime_error naming
+  /// Writes out the buffer; completes (commits) the file when it owns it. Throws std::runtime_error naming
   /// the file on any write error (also one remembered from earlier rows). Idempotent.
   void close();
 
@@ -71,6 +75,7 @@ class CsvWriter {
   char* cell() noexcept;
 
   std::string name_;
+  std::unique_ptr<AtomicFile> atomic_;  // set when writing a file by name
   std::FILE* file_ = nullptr;
   bool owned_ = false;
   std::vector<char> buffer_;  // sized once; flushed when less than one cell's room is left
@@ -79,6 +84,7 @@ class CsvWriter {
   std::size_t cells_in_row_ = 0;
   std::size_t rows_ = 0;
   bool failed_ = false;
+  int errno_ = 0;  // of the first failed write
 };
 
 }  // namespace geaware::io

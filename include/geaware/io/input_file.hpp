@@ -2,16 +2,39 @@
 // Reading a whole input file (vehicle, truth, scenario, weights) before it is parsed, with the
 // errors every reader gives the same way.
 
+#include <cstddef>
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace geaware::io {
 
-/// The bytes of `file`. Throws std::runtime_error naming the file: "<file>: no such <noun>",
+/// The bytes of `file` (a regular file, every line under kMaxLineBytes). Throws std::runtime_error naming the file: "<file>: no such <noun>",
 /// "<file>: not a regular file (expected a <kind>)" or "<file>: cannot read <noun>", where
 /// `noun` is e.g. "vehicle file" and `kind` "vehicle YAML file".
 [[nodiscard]] std::string readInputFile(const std::filesystem::path& file, std::string_view noun,
                                         std::string_view kind);
+
+/// The longest line any text input may hold: a longer one is refused (never read whole, never
+/// echoed whole), which bounds the time and memory a file without newlines (/dev/zero, a binary
+/// file given as a log) can cost.
+inline constexpr std::size_t kMaxLineBytes = std::size_t{1} << 20;
+
+/// The message for a line over kMaxLineBytes that begins with `start`, to follow "<file>:<line>: ":
+/// "line longer than 1 MiB (starts '<at most 80 characters, non-printable ones as \xNN>…');
+/// expected a text file with shorter lines".
+[[nodiscard]] std::string lineTooLong(std::string_view start);
+
+/// An input file this process has opened, and what it is (e.g. "vehicle file").
+struct InputFileRead {
+  std::filesystem::path path;
+  std::string noun;
+};
+/// Records that `file` is read as an input (every reader of io calls it), so that an output
+/// check can refuse to overwrite it even when it was named inside another file. Thread-safe.
+void noteInputFile(const std::filesystem::path& file, std::string_view noun);
+/// Every input file recorded so far, in the order read.
+[[nodiscard]] std::vector<InputFileRead> inputFilesRead();
 
 }  // namespace geaware::io

@@ -43,17 +43,31 @@ struct OutputPath {
 /// most one output on standard output.
 class OutputChecks {
  public:
-  /// Records an input file (one that does not exist is ignored: its reader reports it).
-  void input(const std::string& path);
+  /// Records an input file named by `option` (e.g. "--vehicle"); an empty path, "-" or a file
+  /// that does not exist is ignored (its reader reports it).
+  void input(std::string_view option, const std::string& path);
   /// Records and checks an output; an empty path means "not requested" and is skipped.
   void output(std::string_view option, const std::string& path, bool stdout_allowed = true);
-  /// Throws OutputError for the first conflict between the recorded outputs and inputs.
+  /// Records and checks an output directory (--report, --cache): see checkOutputDirectory.
+  void directory(std::string_view option, const std::string& path);
+  /// Throws OutputError for the first conflict between the recorded outputs and inputs, and
+  /// between the outputs and every file read so far (io::inputFilesRead(): the files a scenario
+  /// or truth file names).
   void check() const;
 
  private:
-  std::vector<std::string> inputs_;
+  struct Input {
+    std::string option, path;
+  };
+  std::vector<Input> inputs_;
   std::vector<OutputPath> outputs_;
+  std::vector<OutputPath> directories_;
 };
+
+/// Checks `path` (named by `option`) as an output directory before any work: an existing one
+/// must be a directory in which a file can be created; a missing one must be creatable (its
+/// nearest existing ancestor a writable directory). Throws OutputError naming option and path.
+[[nodiscard]] OutputPath checkOutputDirectory(std::string_view option, const std::string& path);
 
 /// A file written as a whole or not at all: the text goes to a temporary file next to the
 /// target; `commit()` checks every write, flushes it to disk and renames it over the target

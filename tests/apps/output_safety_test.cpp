@@ -1,0 +1,186 @@
+// Nothing the user gave is lost (issue 16, item 0): the geaware binary run as a careless user
+// would run it — an output that is one of the inputs (same name, another name, a hard link, a
+// symlink, a file a scenario names), two outputs on one file, directories, devices and FIFOs as
+// outputs, a refused run over an existing output, a full disk — must refuse before any work
+// (exit 1, a message naming the options and the path) and leave every existing file byte for
+// byte as it was, with no temporary file left behind.
+
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#ifndef GEAWARE_BINARY
+#error "GEAWARE_BINARY must name the built geaware executable"
+#endif
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int exit_code = -1;
+  std::string err;  ///< stdout and stderr together
+};
+
+class OutputSafetyTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("geaware_safety_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    put("vehicle.yaml", slurp(fs::path(GEAWARE_SOURCE_DIR) / "config/vehicles/paper_quad.yaml"));
+    put("scenario.yaml", slurp(fs::path(GEAWARE_SOURCE_DIR) / "config/scenarios/lemniscate_low.yaml"));
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  void put(const std::string& name, const std::string& text) const {
+    std::ofstream(path(name), std::ios::binary) << text;
+  }
+  static std::string slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+  std::string get(const std::string& name) const { return slurp(fs::path(path(name))); }
+
+  /// Runs `PREFIX geaware ARGS` in the scratch directory through the shell (PREFIX: e.g. a
+  /// ulimit), stdout and stderr together.
+  CliRun geaware(const std::string& args, const std::string& prefix = "") const {
+    const std::string cmd = "cd '" + dir_.string() + "' && " + prefix + "'" GEAWARE_BINARY "' " + args +
+                            " 2>&1";
+    CliRun r;
+    std::FILE* p = ::popen(cmd.c_str(), "r");
+    if (p == nullptr) return r;
+    char buf[4096];
+    std::size_t n = 0;
+    while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.err.append(buf, n);
+    const int status = ::pclose(p);
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+  }
+
+  /// The names in the scratch directory (a temporary file left behind would show here).
+  std::vector<std::string> names() const {
+    std::vector<std::string> out;
+    for (const auto& e : fs::directory_iterator(dir_)) out.push_back(e.path().filename().string());
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+
+  /// Expects a refusal (exit 1) whose message holds every needle, and no file changed or added.
+  void expectRefused(const std::string& args, const std::vector<std::string>& needles) const {
+    std::vector<std::pair<std::string, std::string>> before;
+    for (const auto& n : names()) {
+      if (fs::is_regular_file(path(n))) before.emplace_back(n, get(n));
+    }
+    const auto listed = names();
+    const CliRun r = geaware(args);
+    EXPECT_EQ(r.exit_code, 1) << args << "\n" << r.err;
+    for (const auto& needle : needles) EXPECT_NE(r.err.find(needle), std::string::npos) << needle << "\n" << r.err;
+    for (const auto& [n, text] : before) EXPECT_EQ(get(n), text) << n << " changed by: " << args;
+    EXPECT_EQ(names(), listed) << args;
+  }
+
+  fs::path dir_;
+};
+
+const std::string kFly = "fly --trajectory lemniscate --height 1 --speed 1 --controller model:model_indi --quiet";
+
+// --- fly -------------------------------------------------------------------------------------
+
+TEST_F(OutputSafetyTest, FlyOutputThatIsTheScenarioIsRefused) {
+  for (const std::string opt : {"--out", "--json"}) {
+    expectRefused("fly --quiet --scenario scenario.yaml " + opt + " scenario.yaml",
+                  {opt + " 'scenario.yaml'", "--scenario 'scenario.yaml'", "destroy the input"});
+  }
+}
+
+TEST_F(OutputSafetyTest, FlyOutputThatIsTheVehicleIsRefusedByIdentity) {
+  fs::create_hard_link(path("vehicle.yaml"), path("hard.yaml"));
+  fs::create_symlink(path("vehicle.yaml"), path("soft.yaml"));
+  fs::create_directory(path("sub"));
+  for (const std::string& out : std::vector<std::string>{"vehicle.yaml", "hard.yaml", "soft.yaml",
+                                                         "./sub/../vehicle.yaml", path("vehicle.yaml")}) {
+    expectRefused(kFly + " --vehicle vehicle.yaml --json " + out,
+                  {"--json '" + out + "'", "--vehicle 'vehicle.yaml'"});
+  }
+  expectRefused(kFly + " --truth vehicle.yaml --out soft.yaml", {"--out 'soft.yaml'", "--truth 'vehicle.yaml'"});
+}
+
+// A file named inside the scenario (its vehicle) is an input too.
+TEST_F(OutputSafetyTest, FlyOutputThatIsAFileTheScenarioNamesIsRefused) {
+  std::string text = get("scenario.yaml");
+  text.replace(text.find("vehicle: builtin"), 16, "vehicle: vehicle.yaml");
+  put("scenario.yaml", text);
+  expectRefused("fly --quiet --scenario scenario.yaml --json vehicle.yaml",
+                {"--json 'vehicle.yaml'", "is the vehicle file", "vehicle.yaml"});
+}
+
+TEST_F(OutputSafetyTest, FlyTwoOutputsOnOneFileAreRefused) {
+  expectRefused(kFly + " --out x.csv --json x.csv", {"--json 'x.csv'", "same file as --out 'x.csv'"});
+  expectRefused(kFly + " --out r --report r", {"--out 'r'", "--report 'r'"});
+}
+
+TEST_F(OutputSafetyTest, FlyDirectoriesDevicesAndFifosAreRefused) {
+  fs::create_directory(path("d"));
+  ASSERT_EQ(::mkfifo(path("fifo").c_str(), 0600), 0);
+  expectRefused(kFly + " --out d", {"--out 'd'", "is a directory"});
+  expectRefused(kFly + " --json /dev/full", {"--json '/dev/full'", "not a regular file"});
+  expectRefused(kFly + " --out /dev/null", {"--out '/dev/null'", "not a regular file"});
+  expectRefused(kFly + " --json fifo", {"--json 'fifo'", "not a regular file"});
+  expectRefused(kFly + " --out missing_dir/x.csv", {"--out 'missing_dir/x.csv'", "does not exist"});
+  expectRefused(kFly + " --report vehicle.yaml", {"--report 'vehicle.yaml'", "not a directory"});
+  expectRefused(kFly + " --out -", {"--out '-'", "standard output"});
+}
+
+// The flight is refused after the outputs were accepted (the trajectory is infeasible): the
+// existing log keeps its bytes.
+TEST_F(OutputSafetyTest, FlyRefusedRunKeepsTheExistingOutput) {
+  put("existing.csv", "precious log\n");
+  put("existing.json", "{\"precious\": true}\n");
+  const CliRun r = geaware("fly --trajectory lemniscate --height 0.12 --speed 6 --controller model:model_indi "
+                        "--quiet --out existing.csv --json existing.json");
+  EXPECT_NE(r.exit_code, 0) << r.err;
+  EXPECT_EQ(get("existing.csv"), "precious log\n");
+  EXPECT_EQ(get("existing.json"), "{\"precious\": true}\n");
+  EXPECT_EQ(names(), (std::vector<std::string>{"existing.csv", "existing.json", "scenario.yaml", "vehicle.yaml"}));
+}
+
+// A full disk, made with the shell's file-size limit (SIGXFSZ ignored, so a write fails with
+// EFBIG as on a full file system): exit 1 naming the file, the old log kept, no temporary file.
+TEST_F(OutputSafetyTest, FlyOnAFullDiskFailsAndKeepsTheOldLog) {
+  put("old.csv", "old log\n");
+  const CliRun r = geaware(kFly + " --out old.csv", "trap '' XFSZ; ulimit -f 64; ");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("the flight log 'old.csv': cannot write: File too large"), std::string::npos) << r.err;
+  EXPECT_EQ(get("old.csv"), "old log\n");
+  EXPECT_EQ(names(), (std::vector<std::string>{"old.csv", "scenario.yaml", "vehicle.yaml"}));
+}
+
+// A symlinked output writes its target; the link stays a link.
+TEST_F(OutputSafetyTest, FlySymlinkedOutputWritesItsTarget) {
+  put("real.json", "old");
+  fs::create_symlink("real.json", path("link.json"));
+  const CliRun r = geaware(kFly + " --json link.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::is_symlink(path("link.json")));
+  EXPECT_NE(get("real.json").find("\"rmse_xy_cm\""), std::string::npos);
+}
+
+}  // namespace
