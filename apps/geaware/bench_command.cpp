@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -19,6 +20,7 @@
 #include "geaware/experiments/campaign_summary.hpp"
 #include "geaware/experiments/robustness.hpp"
 #include "geaware/experiments/world_setup.hpp"
+#include "geaware/io/output_file.hpp"
 #include "geaware/io/truth_file.hpp"
 #include "geaware/io/vehicle_file.hpp"
 #include "progress.hpp"
@@ -38,7 +40,7 @@ struct BenchOptions {
   int jobs = 0;
   std::string json;
   std::string report;
-  std::string cache = ".geaware-cache";
+  std::string cache;  ///< empty: the per-user default (defaultCacheDir)
   bool no_cache = false;
   bool truth_mismatch = false;
   bool no_turbulence = false;
@@ -66,6 +68,40 @@ std::vector<T> pick(const std::vector<T>& all, const std::vector<std::string>& n
   return out;
 }
 
+/// The per-user cache directory of the Neural-Lander weights: $XDG_CACHE_HOME/geaware, else
+/// $HOME/.cache/geaware (the XDG base directory specification's default); empty without either.
+std::string defaultCacheDir() {
+  const char* xdg = std::getenv("XDG_CACHE_HOME");
+  if (xdg != nullptr && xdg[0] == '/') return (std::filesystem::path(xdg) / "geaware").string();
+  const char* home = std::getenv("HOME");
+  if (home != nullptr && home[0] != '\0') return (std::filesystem::path(home) / ".cache" / "geaware").string();
+  return {};
+}
+
+/// Every output checked before any work (docs/reliability.md); returns the cache directory to
+/// use: --cache (an error when it cannot be written), else the per-user default, which falls
+/// back to no cache with a warning when it cannot be written; empty with --no-cache.
+std::string checkFiles(const BenchOptions& o) {
+  io::OutputChecks files;
+  files.input("--vehicle", o.vehicle);
+  files.input("--truth", truthInputFile(o.truth));
+  files.output("--json", o.json);
+  files.directory("--report", o.report);
+  if (!o.no_cache && !o.cache.empty()) files.directory("--cache", o.cache);
+  files.check();
+  if (o.no_cache || !o.cache.empty()) return o.no_cache ? std::string() : o.cache;
+  const std::string cache = defaultCacheDir();
+  try {
+    if (cache.empty()) throw io::OutputError("neither XDG_CACHE_HOME nor HOME is set");
+    (void)io::checkOutputDirectory("the cache directory", cache);
+  } catch (const io::OutputError& e) {
+    std::cerr << "geaware: warning: no cache for the Neural-Lander weights (" << e.what()
+              << "); the network is trained and not saved (give --cache DIR to keep it)\n";
+    return {};
+  }
+  return cache;
+}
+
 /// `--suite robustness` (experiments/robustness.hpp, docs/robustness.md).
 int runRobustnessSuite(const BenchOptions& o) {
   experiments::RobustnessOptions c;
@@ -83,7 +119,7 @@ int runRobustnessSuite(const BenchOptions& o) {
   c.seeds = o.seeds;
   c.first_seed = o.first_seed;
   c.jobs = o.jobs;
-  if (!o.no_cache) c.cache_dir = o.cache;
+  c.cache_dir = checkFiles(o);
   TerminalProgress progress("geaware bench", o.quiet);
   c.progress = &progress;
   const experiments::RobustnessResult r = experiments::runRobustness(c);
@@ -133,7 +169,7 @@ int runBench(const BenchOptions& o) {
       }
     }
   }
-  if (!o.no_cache) c.cache_dir = o.cache;
+  c.cache_dir = checkFiles(o);
   c.turbulence = !o.no_turbulence;
   c.calibration.tables = o.ground_effect == "table";
   c.collect_series = !o.report.empty();
@@ -212,8 +248,9 @@ Runner addBenchCommand(CLI::App& app) {
       ->check(CLI::Range(0, 256));
   cmd->add_option("--json", o->json, "write the results as JSON ('-': stdout, the summary goes to stderr)");
   cmd->add_option("--report", o->report, "write an HTML report (bench.html) into DIR");
-  cmd->add_option("--cache", o->cache, "directory of the cached Neural-Lander weights")
-      ->capture_default_str();
+  cmd->add_option("--cache", o->cache,
+                  "directory of the cached Neural-Lander weights (default: $XDG_CACHE_HOME/geaware, "
+                  "else ~/.cache/geaware; without it, or when it cannot be written, a warning and no cache)");
   cmd->add_flag("--no-cache", o->no_cache, "always retrain the Neural-Lander network, save nothing");
   // Moved into the truth file (truth.per_flight_variation): kept, hidden, to say where.
   cmd->add_flag("--truth-mismatch", o->truth_mismatch)->group("");

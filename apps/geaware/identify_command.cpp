@@ -14,6 +14,7 @@
 #include "geaware/experiments/identify_report.hpp"
 #include "geaware/ident/identify.hpp"
 #include "geaware/io/json.hpp"
+#include "geaware/io/output_file.hpp"
 #include "geaware/io/provenance.hpp"
 #include "geaware/io/range.hpp"
 #include "geaware/io/vehicle_file.hpp"
@@ -155,6 +156,14 @@ int runIdentify(const IdentifyOptions& opt) {
   if (!opt.out.empty() && opt.kind == "correlations") {
     throw UsageError("--out: `identify correlations` fits no vehicle-file keys");
   }
+  // Every output checked before the log is read (docs/reliability.md).
+  io::OutputChecks files;
+  files.input("the log", opt.log);
+  files.input("--vehicle", opt.vehicle);
+  files.output("--out", opt.out, false);
+  files.output("--json", opt.json);
+  files.directory("--report", opt.report);
+  files.check();
   const model::VehicleParams base = opt.vehicle.empty() ? io::builtinVehicle() : io::loadVehicleFile(opt.vehicle);
   ident::IdentifyResult r = identify(opt, base);
   // Human text on stdout, unless stdout carries the JSON.

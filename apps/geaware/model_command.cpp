@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "geaware/experiments/model_table.hpp"
+#include "geaware/io/output_file.hpp"
 #include "geaware/io/range.hpp"
 #include "geaware/io/vehicle_file.hpp"
 
@@ -23,6 +24,10 @@ struct ModelOptions {
 };
 
 int runModel(const ModelOptions& o) {
+  io::OutputChecks files;
+  files.input("--vehicle", o.vehicle);
+  files.output("--json", o.json);
+  files.check();
   const model::VehicleModel vehicle(o.vehicle.empty() ? io::builtinVehicle()
                                                       : io::loadVehicleFile(o.vehicle));
   const io::Range range = io::parseRange(o.heights, "--heights", 100'000);

@@ -18,6 +18,7 @@
 #include "geaware/experiments/rig_runs.hpp"
 #include "geaware/io/csv_writer.hpp"
 #include "geaware/io/json.hpp"
+#include "geaware/io/output_file.hpp"
 #include "geaware/io/provenance.hpp"
 #include "geaware/io/range.hpp"
 #include "geaware/io/truth_file.hpp"
@@ -50,14 +51,22 @@ struct RigOptions {
   std::string json;
 };
 
-/// The world the rigs run on: --truth, or the ideal world of the built-in vehicle.
+/// The world the rigs run on: --truth, or the ideal world of the built-in vehicle. Every output
+/// is checked here, before any sweep (docs/reliability.md).
 sim::World loadWorld(const RigOptions& o) {
   if (!o.vehicle.empty()) {
     throw UsageError("rig: --vehicle is now --truth FILE (a vehicle file is a valid truth file: "
                      "its ideal world; docs/truth-file.md)");
   }
-  return o.truth.empty() ? sim::idealWorld(io::builtinVehicle(), "<built-in paper_quad>")
-                         : io::resolveTruth(o.truth, {});
+  sim::World world = o.truth.empty() ? sim::idealWorld(io::builtinVehicle(), "<built-in paper_quad>")
+                                     : io::resolveTruth(o.truth, {});
+  io::OutputChecks files;
+  files.input("--truth", truthInputFile(o.truth));
+  files.output("--out", o.out, false);
+  files.output("--json", o.json);
+  files.directory("--report", o.report);
+  files.check();
+  return world;
 }
 
 /// Progress on stderr for long sweeps: at most about twice a second, only when it takes a while.

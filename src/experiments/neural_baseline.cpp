@@ -278,19 +278,27 @@ NeuralBaseline prepareNeuralBaseline(const FlightScenario& base, const NeuralSet
   nb.network = std::make_shared<neural::ResidualNetwork>(trained.weights);
   nb.trained = true;
 
-  // 3. Cache.
+  // 3. Cache. A cache that cannot be written costs the next run a training, never this run's
+  // result: a warning, and the network is used unsaved.
   if (!nb.file.empty()) {
-    std::filesystem::create_directories(cache_dir);
-    neural::WeightsDocument doc;
-    doc.weights = trained.weights;
-    doc.provenance["produced_by"] = "geaware bench (experiments::prepareNeuralBaseline)";
-    doc.provenance["cache_key_hash"] = nb.key_hash;
-    doc.provenance["cache_key"] = key;
-    doc.provenance["rows"] = std::to_string(nb.rows);
-    doc.provenance["final_validation_loss_N2"] = num(nb.validation_loss_N2);
-    // Written through a temporary file and renamed (io::AtomicFile), so a concurrent reader
-    // never sees half a file.
-    neural::saveWeights(nb.file, doc);
+    try {
+      std::filesystem::create_directories(cache_dir);
+      neural::WeightsDocument doc;
+      doc.weights = trained.weights;
+      doc.provenance["produced_by"] = "geaware bench (experiments::prepareNeuralBaseline)";
+      doc.provenance["cache_key_hash"] = nb.key_hash;
+      doc.provenance["cache_key"] = key;
+      doc.provenance["rows"] = std::to_string(nb.rows);
+      doc.provenance["final_validation_loss_N2"] = num(nb.validation_loss_N2);
+      // Written through a temporary file and renamed (io::AtomicFile), so a concurrent reader
+      // never sees half a file.
+      neural::saveWeights(nb.file, doc);
+    } catch (const std::exception& e) {
+      say(fmt::format("warning: Neural-Lander: the cache {} cannot be written ({}); the trained "
+                      "network is used without saving it",
+                      nb.file.string(), e.what()));
+      nb.file.clear();
+    }
   }
   nb.wall_s = elapsed();
   say(fmt::format("Neural-Lander: trained in {:.1f} s (validation MSE {:.4f} N² per component)",

@@ -1,5 +1,7 @@
 #include "geaware/report/page.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -317,16 +319,34 @@ std::string Page::html(const std::string& plotly_js) const {
 
 void Page::write(const std::filesystem::path& html_file) const {
   const std::string page = html(readFile(plotlyJsPath(), "the plotly.js bundle"));
-  std::ofstream out(html_file, std::ios::binary | std::ios::trunc);
-  if (!out) {
-    throw std::runtime_error("report: cannot write '" + html_file.string() +
-                             "': " + std::strerror(errno));
+  // Whole or not at all: a temporary file beside the page, renamed over it once written (a
+  // symlinked page is written through to its target). The report layer sees no other layer,
+  // so this is io::AtomicFile's rule in a few lines.
+  std::error_code ec;
+  const std::filesystem::path target =
+      std::filesystem::is_symlink(html_file, ec) ? std::filesystem::canonical(html_file, ec) : html_file;
+  if (std::filesystem::exists(target, ec) && !std::filesystem::is_regular_file(target, ec)) {
+    throw std::runtime_error("report: '" + html_file.string() + "' exists and is not a regular file");
   }
-  out.write(page.data(), static_cast<std::streamsize>(page.size()));
-  out.close();
-  if (!out) {
-    throw std::runtime_error("report: writing '" + html_file.string() +
-                             "' failed: " + std::strerror(errno));
+  std::filesystem::path temp = target;
+  temp += ".geaware-tmp-" + std::to_string(::getpid());
+  {
+    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+    if (!out) {
+      throw std::runtime_error("report: cannot write '" + html_file.string() + "': " + std::strerror(errno));
+    }
+    out.write(page.data(), static_cast<std::streamsize>(page.size()));
+    out.close();
+    if (!out) {
+      const int e = errno;
+      std::filesystem::remove(temp, ec);
+      throw std::runtime_error("report: writing '" + html_file.string() + "' failed: " + std::strerror(e));
+    }
+  }
+  std::filesystem::rename(temp, target, ec);
+  if (ec) {
+    std::filesystem::remove(temp, ec);
+    throw std::runtime_error("report: cannot replace '" + html_file.string() + "': " + ec.message());
   }
 }
 

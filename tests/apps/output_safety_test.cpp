@@ -183,4 +183,68 @@ TEST_F(OutputSafetyTest, FlySymlinkedOutputWritesItsTarget) {
   EXPECT_NE(get("real.json").find("\"rmse_xy_cm\""), std::string::npos);
 }
 
+// --- identify, model, rig, bench ----------------------------------------------------------------
+
+TEST_F(OutputSafetyTest, IdentifyOutputThatIsTheLogOrTheVehicleIsRefused) {
+  put("rotor.csv", "t_s,throttle,rpm,thrust_N,torque_Nm\n");
+  fs::create_symlink("vehicle.yaml", path("link.yaml"));
+  for (const std::string opt : {"--out", "--json"}) {
+    expectRefused("identify rotor rotor.csv " + opt + " rotor.csv",
+                  {opt + " 'rotor.csv'", "the input the log 'rotor.csv'"});
+    expectRefused("identify rotor rotor.csv --vehicle vehicle.yaml " + opt + " link.yaml",
+                  {opt + " 'link.yaml'", "--vehicle 'vehicle.yaml'"});
+  }
+  expectRefused("identify rotor rotor.csv --out a.yaml --json a.yaml", {"same file as --out 'a.yaml'"});
+  expectRefused("identify rotor rotor.csv --report rotor.csv", {"--report 'rotor.csv'", "not a directory"});
+}
+
+// identify --out through a symlink writes the link's target; the link stays a link.
+TEST_F(OutputSafetyTest, IdentifyOutThroughASymlinkWritesItsTarget) {
+  ASSERT_EQ(geaware("rig rotor --out rotor.csv").exit_code, 0);
+  put("merged.yaml", "old");
+  fs::create_symlink("merged.yaml", path("link.yaml"));
+  const CliRun r = geaware("identify rotor rotor.csv --vehicle vehicle.yaml --out link.yaml");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::is_symlink(path("link.yaml")));
+  EXPECT_NE(get("merged.yaml").find("k_T_N_per_rpm2"), std::string::npos);
+}
+
+TEST_F(OutputSafetyTest, ModelJsonThatIsTheVehicleIsRefused) {
+  expectRefused("model --vehicle vehicle.yaml --json ./vehicle.yaml",
+                {"--json './vehicle.yaml'", "--vehicle 'vehicle.yaml'"});
+}
+
+TEST_F(OutputSafetyTest, RigOutputThatIsTheTruthIsRefused) {
+  expectRefused("rig rotor --truth vehicle.yaml --out vehicle.yaml", {"--out 'vehicle.yaml'", "--truth 'vehicle.yaml'"});
+  expectRefused("rig calibrate --truth vehicle.yaml --json vehicle.yaml",
+                {"--json 'vehicle.yaml'", "--truth 'vehicle.yaml'"});
+  expectRefused("rig platform --heights 0.1:0.2:0.1 --rpm 8000:8000:1 --out /dev/full", {"--out '/dev/full'"});
+}
+
+// A sweep refused after the output was opened (a throttle outside [0, 1]) leaves the old file.
+TEST_F(OutputSafetyTest, RigRefusedSweepKeepsTheExistingOutput) {
+  put("existing.csv", "precious\n");
+  const CliRun r = geaware("rig rotor --throttle 0:2:0.5 --out existing.csv");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(get("existing.csv"), "precious\n");
+  EXPECT_EQ(names(), (std::vector<std::string>{"existing.csv", "scenario.yaml", "vehicle.yaml"}));
+}
+
+TEST_F(OutputSafetyTest, BenchOutputsAreCheckedBeforeAnyWork) {
+  expectRefused("bench --quiet --vehicle vehicle.yaml --json vehicle.yaml",
+                {"--json 'vehicle.yaml'", "--vehicle 'vehicle.yaml'"});
+  expectRefused("bench --quiet --report vehicle.yaml", {"--report 'vehicle.yaml'", "not a directory"});
+  expectRefused("bench --quiet --cache vehicle.yaml", {"--cache 'vehicle.yaml'", "not a directory"});
+  expectRefused("bench --quiet --suite robustness --json /dev/null", {"--json '/dev/null'"});
+}
+
+// The default cache ($XDG_CACHE_HOME/geaware) that cannot be written: a warning, and the run
+// goes on without a cache.
+TEST_F(OutputSafetyTest, BenchFallsBackToNoCacheWithAWarning) {
+  const CliRun r = geaware("bench --suite robustness --cases none --controllers indi:none --seeds 1 --quiet",
+                           "XDG_CACHE_HOME='" + path("vehicle.yaml") + "' ");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: no cache for the Neural-Lander weights"), std::string::npos) << r.err;
+}
+
 }  // namespace
