@@ -11,6 +11,7 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,7 @@ struct FlyOptions {
   bool png = false;
   bool quiet = false;
   double start_hover_s = 1.0;
+  double max_sim_s = std::nan("");  ///< NaN: the scenario file's, else FlightScenario's 3600 s
   double yaw_rate_gain = std::nan("");
   std::vector<std::string> ablate;
 };
@@ -81,7 +83,8 @@ experiments::FlightScenario scenarioOf(const FlyOptions& o) {
     // The scenario file fixes vehicle, trajectory, controller, terrain, disturbances and seed;
     // the options that would contradict it are refused at parse time. --truth replaces its
     // world.
-    s = experiments::loadScenarioFile(o.scenario, world ? &*world : nullptr);
+    s = experiments::loadScenarioFile(o.scenario, world ? &*world : nullptr,
+                                      std::isnan(o.max_sim_s) ? std::nullopt : std::optional<double>(o.max_sim_s));
   } else {
     s.vehicle = o.vehicle.empty() ? io::builtinVehicle() : io::loadVehicleFile(o.vehicle);
     experiments::applyWorld(
@@ -93,6 +96,7 @@ experiments::FlightScenario scenarioOf(const FlyOptions& o) {
   }
   if (std::isfinite(o.yaw_rate_gain)) s.controller.k_w_per_s.z() = o.yaw_rate_gain;
   s.start_hover_s = o.start_hover_s;
+  if (!std::isnan(o.max_sim_s)) s.max_sim_s = o.max_sim_s;
   for (const auto& a : o.ablate) {
     if (a == "motor_reaction") s.plant.motor_reaction = false;
     if (a == "gyroscopic") s.plant.gyroscopic = false;
@@ -130,9 +134,21 @@ void checkFiles(const FlyOptions& o) {
   files.check();
 }
 
+/// Refuses, before it starts, a flight whose simulated duration exceeds --max-sim-s.
+void checkDuration(const experiments::FlightScenario& s) {
+  const double trajectory_s = s.trajectory->duration();
+  const double sim_s = s.start_hover_s + trajectory_s + s.settle_s;
+  if (sim_s <= s.max_sim_s) return;
+  throw std::runtime_error(fmt::format(
+      "the flight would simulate {:.6g} s (start hover {:.6g} s + trajectory {:.6g} s + settle {:.6g} s), "
+      "more than --max-sim-s {:.6g} s; fly faster or a shorter path, or raise --max-sim-s",
+      sim_s, s.start_hover_s, trajectory_s, s.settle_s, s.max_sim_s));
+}
+
 int runFly(const FlyOptions& o) {
   const experiments::FlightScenario s = scenarioOf(o);
   checkFiles(o);
+  checkDuration(s);
   const io::RunInfo run =
       runInfo({s.seed}, {o.scenario, o.vehicle, truthInputFile(o.truth), o.neural_weights});
   experiments::ObserverList observers;
@@ -210,6 +226,10 @@ void addOutputOptions(CLI::App* cmd, FlyOptions& o) {
                   "hover at the first point before the trajectory starts [s]")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--max-sim-s", o.max_sim_s,
+                  "refuse, before it starts, a flight whose simulated duration (start hover, "
+                  "trajectory, settling) is longer (default: the scenario file's max_sim_s, else 3600) [s]")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--out", o.out,
                   "CSV log, one row per control tick (readable by `geaware identify flight`)");
   cmd->add_option("--json", o.json, "write the summary as one JSON object ('-': stdout)");

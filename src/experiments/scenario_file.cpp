@@ -124,7 +124,7 @@ std::shared_ptr<const sim::Terrain> readTerrain(io::MapReader& t, const std::fil
 
 FlightScenario parseScenarioYaml(std::string_view yaml_text, const std::string& source,
                                  const std::filesystem::path& base_dir,
-                                 const sim::World* truth_override) {
+                                 const sim::World* truth_override, std::optional<double> max_sim_s_override) {
   YAML::Node doc;
   try {
     doc = YAML::Load(std::string(yaml_text));
@@ -206,6 +206,9 @@ FlightScenario parseScenarioYaml(std::string_view yaml_text, const std::string& 
     dist.rejectUnknownKeys();
   }
 
+  if (root.has("max_sim_s")) s.max_sim_s = root.number("max_sim_s");
+  if (max_sim_s_override) s.max_sim_s = *max_sim_s_override;
+
   // The per-flight variation is the world's now: one way to describe a world.
   if (root.has("truth_mismatch")) {
     (void)root.map("truth_mismatch");
@@ -226,9 +229,10 @@ FlightScenario parseScenarioYaml(std::string_view yaml_text, const std::string& 
   return s;
 }
 
-FlightScenario loadScenarioFile(const std::filesystem::path& file, const sim::World* truth_override) {
+FlightScenario loadScenarioFile(const std::filesystem::path& file, const sim::World* truth_override,
+                                std::optional<double> max_sim_s_override) {
   return parseScenarioYaml(io::readInputFile(file, "scenario file", "scenario YAML file"),
-                           file.string(), file.parent_path(), truth_override);
+                           file.string(), file.parent_path(), truth_override, max_sim_s_override);
 }
 
 }  // namespace geaware::experiments

@@ -105,6 +105,21 @@ void checkFeasibility(const FlightScenario& s, std::vector<ScenarioProblem>& out
 InvalidScenario::InvalidScenario(std::vector<ScenarioProblem> problems)
     : std::invalid_argument(model::describeErrors("invalid flight scenario:", problems)), problems_(std::move(problems)) {}
 
+/// False (with a problem) when the flight would simulate longer than max_sim_s: the feasibility
+/// check samples every control tick, so it must not start then.
+bool durationBounded(const FlightScenario& s, std::vector<ScenarioProblem>& out) {
+  positive(out, "max_sim_s", s.max_sim_s);
+  if (s.trajectory == nullptr || !std::isfinite(s.max_sim_s)) return false;
+  const double trajectory_s = s.trajectory->duration();
+  const double sim_s = s.start_hover_s + trajectory_s + s.settle_s;
+  if (sim_s <= s.max_sim_s) return true;
+  out.push_back({"trajectory",
+                 "a flight of " + show(sim_s) + " s (start hover " + show(s.start_hover_s) + " s + trajectory " +
+                     show(trajectory_s) + " s + settling " + show(s.settle_s) + " s)",
+                 "at most max_sim_s = " + show(s.max_sim_s) + " s (fly --max-sim-s, scenario key max_sim_s)"});
+  return false;
+}
+
 std::vector<ScenarioProblem> validate(const FlightScenario& s, ScenarioStage stage) {
   std::vector<ScenarioProblem> out;
   const auto vehicle_errors = s.vehicle.validate();
@@ -174,7 +189,7 @@ std::vector<ScenarioProblem> validate(const FlightScenario& s, ScenarioStage sta
   finite3(out, "estimator_start.position_error_m", s.estimator_start.position_error_m);
   finite3(out, "estimator_start.velocity_error_mps", s.estimator_start.velocity_error_mps);
   finite3(out, "estimator_start.attitude_error_rad", s.estimator_start.attitude_error_rad);
-  if (out.empty() && s.check_feasibility) checkFeasibility(s, out);
+  if (durationBounded(s, out) && out.empty() && s.check_feasibility) checkFeasibility(s, out);
   return out;
 }
 

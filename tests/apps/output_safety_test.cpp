@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -245,6 +246,52 @@ TEST_F(OutputSafetyTest, BenchFallsBackToNoCacheWithAWarning) {
                            "XDG_CACHE_HOME='" + path("vehicle.yaml") + "' ");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("warning: no cache for the Neural-Lander weights"), std::string::npos) << r.err;
+}
+
+// --- nothing hangs ----------------------------------------------------------------------------
+
+TEST_F(OutputSafetyTest, FlightsLongerThanMaxSimSAreRefusedBeforeTheyStart) {
+  std::string text = get("scenario.yaml");
+  const auto a = text.find("trajectory:");
+  const auto b = text.find("controller:");
+  text.replace(a, b - a,
+               "trajectory:\n  type: waypoints\n  points_m: [[0, 0, 1], [10000000, 0, 1]]\n"
+               "  average_speed_mps: 1.0\n  yaw_deg: 0.0\n\n");
+  put("far.yaml", text);
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+      {"fly --quiet --trajectory lemniscate --height 1 --speed 1e-9 --controller model:model_indi",
+       {"--max-sim-s 3600 s", "trajectory 1.378"}},
+      {kFly + " --start-hover 1e9", {"--max-sim-s 3600 s", "start hover 1e+09 s"}},
+      {kFly + " --max-sim-s 10", {"--max-sim-s 10 s"}},
+      {"fly --quiet --scenario far.yaml", {"far.yaml:", "a flight of 10000001 s", "max_sim_s = 3600 s"}},
+      {"fly --quiet --scenario far.yaml --max-sim-s 100", {"max_sim_s = 100 s"}},
+  };
+  for (const auto& [args, needles] : cases) {
+    const auto start = std::chrono::steady_clock::now();
+    const CliRun r = geaware(args);
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(1)) << args;
+    EXPECT_EQ(r.exit_code, 1) << args << "\n" << r.err;
+    for (const auto& n : needles) EXPECT_NE(r.err.find(n), std::string::npos) << n << "\n" << r.err;
+  }
+}
+
+// A log without newlines (/dev/zero, a 300 MB sparse file) fails within a second, naming the
+// file and line and echoing at most 80 characters.
+TEST_F(OutputSafetyTest, LogsWithoutNewlinesFailWithinASecond) {
+  {
+    std::ofstream(path("huge.csv")) << "t_s,throttle,rpm,thrust_N,torque_Nm\n";
+  }
+  fs::resize_file(path("huge.csv"), 300'000'000);
+  for (const std::string& log : {std::string("/dev/zero"), std::string("huge.csv")}) {
+    const auto start = std::chrono::steady_clock::now();
+    const CliRun r = geaware("identify rotor " + log);
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(1)) << log;
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find(log + ":"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("line longer than 1 MiB"), std::string::npos) << r.err;
+    EXPECT_LT(r.err.size(), 1000u) << "the line is not echoed whole";
+  }
+  fs::remove(path("huge.csv"));
 }
 
 }  // namespace

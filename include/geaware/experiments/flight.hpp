@@ -112,6 +112,9 @@ struct FlightScenario {
   double plant_rate_hz = 1000.0;  ///< fixed plant step; a multiple of controller.rate_hz [Hz]
   double start_hover_s = 1.0;     ///< hover at the first point before the trajectory [s]
   double settle_s = 0.0;          ///< flown (at the last point) after the trajectory ends [s]
+  /// The longest flight validate() lets fly: start hover + trajectory + settling, refused before
+  /// it starts (`fly --max-sim-s`, scenario key max_sim_s) [s].
+  double max_sim_s = 3600.0;
   /// A ranger height older than this is not handed to the controller (it keeps its last one
   /// and flags kFlagHeightInvalid) [s].
   double max_height_age_s = 0.05;

@@ -6,6 +6,7 @@
 // file, line and key. Format and examples: docs/scenario-file.md, config/scenarios/.
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -17,14 +18,17 @@ namespace geaware::experiments {
 
 /// Reads a scenario file; relative paths inside it (vehicle, truth, height map) are resolved
 /// against the file's folder. `truth_override` (`fly --truth`), when given, replaces the file's
-/// `truth`. Throws io::ConfigError (file, line, key, expectation), or std::runtime_error when a
-/// file cannot be read.
+/// `truth`; `max_sim_s_override` (`fly --max-sim-s`), when given, replaces the file's max_sim_s.
+/// Throws io::ConfigError (file, line, key, expectation), or std::runtime_error when a file
+/// cannot be read.
 [[nodiscard]] FlightScenario loadScenarioFile(const std::filesystem::path& file,
-                                              const sim::World* truth_override = nullptr);
+                                              const sim::World* truth_override = nullptr,
+                                              std::optional<double> max_sim_s_override = {});
 
 /// Parses scenario YAML; `source` names it in errors, `base_dir` resolves relative paths.
 [[nodiscard]] FlightScenario parseScenarioYaml(std::string_view yaml_text, const std::string& source,
                                                const std::filesystem::path& base_dir,
-                                               const sim::World* truth_override = nullptr);
+                                               const sim::World* truth_override = nullptr,
+                                               std::optional<double> max_sim_s_override = {});
 
 }  // namespace geaware::experiments
