@@ -2,11 +2,13 @@
 // Thin: the campaign, its text, JSON and report live in the experiments layer.
 
 #include "commands.hpp"
+#include "numbers.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cstdlib>
+#include <limits>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -236,8 +238,9 @@ Runner addBenchCommand(CLI::App& app) {
                  "the built-in vehicle)");
   cmd->add_option("--seeds", o->seeds, "flights per experiment and hover curve")
       ->capture_default_str()
-      ->check(CLI::Range(1, 1000));
+      ->check(wholeIn(1, 1000));
   cmd->add_option("--first-seed", o->first_seed, "seeds are first-seed … first-seed + seeds − 1")
+      ->check(seed())
       ->capture_default_str();
   cmd->add_option("--only", o->only,
                   "fly only these: Table I experiments 1–8 (the paper's), 9–10 (recommended) "
@@ -245,7 +248,7 @@ Runner addBenchCommand(CLI::App& app) {
       ->check(CLI::IsMember({"1", "2", "3", "4", "5", "6", "7", "8", "9", "10", "hover"}));
   cmd->add_option("--jobs", o->jobs, "parallel flights (0: one per core); results do not depend on it")
       ->capture_default_str()
-      ->check(CLI::Range(0, 256));
+      ->check(wholeIn(0, 256));
   cmd->add_option("--json", o->json, "write the results as JSON ('-': stdout, the summary goes to stderr)");
   cmd->add_option("--report", o->report, "write an HTML report (bench.html) into DIR");
   cmd->add_option("--cache", o->cache,
@@ -264,6 +267,10 @@ Runner addBenchCommand(CLI::App& app) {
   cmd->add_flag("--png", o->png, "with --report: also the whole page as DIR/bench.png (Chromium)");
   cmd->add_flag("--quiet", o->quiet, "no progress on stderr");
   cmd->parse_complete_callback([o]() {
+    if (o->first_seed > std::numeric_limits<std::uint64_t>::max() - static_cast<std::uint64_t>(o->seeds - 1)) {
+      throw CLI::ValidationError("--first-seed", "--first-seed " + std::to_string(o->first_seed) + " + --seeds " +
+                                                     std::to_string(o->seeds) + " - 1 is above 2^64 - 1");
+    }
     if (o->png && o->report.empty()) throw CLI::ValidationError("--png", "--png needs --report DIR");
     if (o->suite == "robustness" &&
         (!o->only.empty() || o->no_turbulence || o->ground_effect != "paper")) {

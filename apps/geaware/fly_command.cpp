@@ -3,6 +3,7 @@
 // experiments layer.
 
 #include "commands.hpp"
+#include "numbers.hpp"
 
 #include <fmt/format.h>
 
@@ -193,27 +194,27 @@ void addFlightOptions(CLI::App* cmd, FlyOptions& o) {
   cmd->add_option("--height", o.height_m,
                   "flight height of the lemniscate / final height of the descent, rotor plane "
                   "above the ground [m]")
-      ->check(CLI::PositiveNumber);
+      ->check(positive());
   cmd->add_option("--speed", o.speed_mps,
                   "lemniscate: peak speed; hover-descent: descent rate (default 0.1) [m/s]")
-      ->check(CLI::PositiveNumber);
+      ->check(positive());
   cmd->add_option("--extent-x", o.extent_x_m, "lemniscate half extent along x [m]")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(positive());
   cmd->add_option("--extent-y", o.extent_y_m, "lemniscate half extent along y [m]")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--laps", o.laps, "lemniscate laps")->capture_default_str()->check(CLI::Range(1, 1000));
+      ->check(positive());
+  cmd->add_option("--laps", o.laps, "lemniscate laps")->capture_default_str()->check(wholeIn(1, 1000));
   cmd->add_option("--from-height", o.from_height_m, "hover-descent start height [m]")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(positive());
   cmd->add_option("--controller", o.controller,
                   "recommended (geaware's: model:model_indi with disturbance feed-forward, "
                   "integral action and a clearance guard; docs/controller.md) or ACC:TORQUE, ACC "
                   "in none|indi|neural|model, TORQUE in none|model|indi|model_indi (the paper's: "
                   "model:model_indi)")
       ->check(kControllerSpec);
-  cmd->add_option("--seed", o.seed, "seed of sensors and disturbances")->capture_default_str();
+  cmd->add_option("--seed", o.seed, "seed of sensors and disturbances")->capture_default_str()->check(seed());
   cmd->add_flag("--no-turbulence", o.no_turbulence, "switch off the near-ground turbulence");
 }
 
@@ -221,15 +222,15 @@ void addOutputOptions(CLI::App* cmd, FlyOptions& o) {
   cmd->add_option("--yaw-rate-gain", o.yaw_rate_gain,
                   "override K^ω_z, the controller's yaw-rate gain (default: the paper's 16) "
                   "[1/s]; see docs/closed-loop.md on the yaw channel")
-      ->check(CLI::PositiveNumber);
+      ->check(positive());
   cmd->add_option("--start-hover", o.start_hover_s,
                   "hover at the first point before the trajectory starts [s]")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(nonNegative());
   cmd->add_option("--max-sim-s", o.max_sim_s,
                   "refuse, before it starts, a flight whose simulated duration (start hover, "
                   "trajectory, settling) is longer (default: the scenario file's max_sim_s, else 3600) [s]")
-      ->check(CLI::PositiveNumber);
+      ->check(positive());
   cmd->add_option("--out", o.out,
                   "CSV log, one row per control tick (readable by `geaware identify flight`)");
   cmd->add_option("--json", o.json, "write the summary as one JSON object ('-': stdout)");

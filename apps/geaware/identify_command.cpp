@@ -3,6 +3,7 @@
 // log, call the ident library (ident/identify.hpp), print and write.
 
 #include "commands.hpp"
+#include "numbers.hpp"
 
 #include <filesystem>
 #include <iostream>
@@ -213,6 +214,7 @@ Runner addIdentifyCommand(CLI::App& app) {
     sub->add_option("--loss", opts->loss, "robust loss")->check(CLI::IsMember({"huber", "cauchy", "none"}))->capture_default_str();
     if (name == "platform") {
       sub->add_option("--tilt-limit", opts->tilt_limit_deg, "largest board tilt used for the leveling torque [deg]")
+          ->check(finiteIn(0.0, 90.0, true))
           ->capture_default_str();
       sub->add_option("--ground-effect", opts->ground_effect,
                       "form of F_G and M_G: 'paper' (g2/(h² + g1), scale·h/(h² + g3·h + g4)²) or 'table' "
@@ -222,13 +224,13 @@ Runner addIdentifyCommand(CLI::App& app) {
       sub->add_option("--table-top", opts->table_top_m,
                       "table: F_G knots at the logged heights up to this one; level samples above it follow the "
                       "1/h² tail and fix k_T [m]")
-          ->check(CLI::PositiveNumber)
+          ->check(positive())
           ->capture_default_str();
       sub->add_option("--table-heights", opts->table_heights,
                       "table: explicit knot heights FROM:TO:STEP for both curves [m] (instead of the logged heights)");
     }
     if (name == "platform" || name == "flight") {
-      sub->add_option("--height-bands", opts->height_bands, "number of height bands")->check(CLI::Range(1, 100))->capture_default_str();
+      sub->add_option("--height-bands", opts->height_bands, "number of height bands")->check(wholeIn(1, 100))->capture_default_str();
     }
     if (name == "flight") sub->add_flag("--hover", opts->hover, "the log is a hover descent: fit F_G (eq. 10)");
     sub->callback([opts, name = name] { opts->kind = name; });

@@ -4,6 +4,7 @@
 // Thin: parse, call experiments/rig_runs.hpp, write the rows, the JSON and the pages.
 
 #include "commands.hpp"
+#include "numbers.hpp"
 
 #include <fmt/format.h>
 
@@ -221,15 +222,16 @@ Runner addRigCommand(CLI::App& app) {
       ->delimiter(',')
       ->capture_default_str();
   platform->add_option("--samples", opts->samples, "samples per setpoint")
-      ->check(CLI::Range(1, 1'000'000))
+      ->check(wholeIn(1, 1000000))
       ->capture_default_str();
   platform->add_option("--force-noise", opts->force_noise_N, "force sensor noise std [N]")
-      ->check(CLI::NonNegativeNumber)
+      ->check(nonNegative())
       ->capture_default_str();
   platform->add_option("--torque-noise", opts->torque_noise_Nm, "torque sensor noise std [N·m]")
-      ->check(CLI::NonNegativeNumber)
+      ->check(nonNegative())
       ->capture_default_str();
   platform->add_option("--seed", opts->seed, "noise seed (same seed: identical file)")
+      ->check(seed())
       ->capture_default_str();
   platform->add_option("--out", opts->out, "CSV file to write (overwritten)")->required();
   platform->add_option("--report", opts->report, "also write an HTML page of the sweep into DIR");
@@ -243,12 +245,12 @@ Runner addRigCommand(CLI::App& app) {
   rotor->add_option("--throttle", opts->throttle, "throttle steps FROM:TO:STEP in [0, 1]")
       ->capture_default_str();
   rotor->add_option("--hold", opts->hold_s, "time each throttle is held [s]")
-      ->check(CLI::PositiveNumber)
+      ->check(positive())
       ->capture_default_str();
   rotor->add_option("--sample-period", opts->sample_period_s, "time between samples [s]")
-      ->check(CLI::PositiveNumber)
+      ->check(positive())
       ->capture_default_str();
-  rotor->add_option("--seed", opts->seed, "noise seed")->capture_default_str();
+  rotor->add_option("--seed", opts->seed, "noise seed")->capture_default_str()->check(seed());
   rotor->add_option("--out", opts->out, "CSV file to write (overwritten)")->required();
   rotor->add_option("--report", opts->report, "also write an HTML page into DIR");
   rotor->add_flag("--png", opts->png,

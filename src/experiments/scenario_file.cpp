@@ -30,6 +30,18 @@ std::filesystem::path resolve(const std::filesystem::path& base, const std::stri
 Eigen::Vector2d vec2(const std::vector<double>& v) { return {v[0], v[1]}; }
 Eigen::Vector3d vec3(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
 
+/// `n` finite numbers at `key` (no value of a scenario may be NaN or infinite: a NaN wind flew
+/// like no wind); a missing, short or non-finite list is a problem there, NaN-padded to `n`.
+std::vector<double> fixedFinite(io::MapReader& m, const std::string& key, std::size_t n) {
+  const auto before = m.problemCount();
+  std::vector<double> v = m.finiteNumbers(key);
+  if (m.problemCount() == before && v.size() != n) {
+    m.problem(key, "expected a list of " + std::to_string(n) + " numbers, got " + std::to_string(v.size()));
+  }
+  v.resize(n, std::nan(""));
+  return v;
+}
+
 /// Runs a constructor that validates and throws std::invalid_argument; its message becomes a
 /// problem at the section's key. Skipped when the file already has problems (a missing or
 /// malformed value would only be reported a second time, less clearly).
@@ -48,36 +60,38 @@ std::shared_ptr<const traj::Trajectory> readTrajectory(io::MapReader& t) {
   const std::string type = t.choice("type", {"lemniscate", "hover_descent", "waypoints"});
   if (type == "lemniscate") {
     traj::LemniscateParams p;
-    p.centre_xy_m = vec2(t.fixedNumbers("centre_xy_m", 2));
-    p.half_extent_x_m = t.number("half_extent_x_m");
-    p.half_extent_y_m = t.number("half_extent_y_m");
-    p.height_m = t.number("height_m");
-    p.peak_speed_mps = t.number("peak_speed_mps");
+    p.centre_xy_m = vec2(fixedFinite(t, "centre_xy_m", 2));
+    p.half_extent_x_m = t.finiteNumber("half_extent_x_m");
+    p.half_extent_y_m = t.finiteNumber("half_extent_y_m");
+    p.height_m = t.finiteNumber("height_m");
+    p.peak_speed_mps = t.finiteNumber("peak_speed_mps");
     p.laps = static_cast<int>(t.integer("laps", 1, 1000));
-    p.ramp_time_s = t.number("ramp_time_s");
-    p.yaw_rad = t.number("yaw_deg") * model::kDegToRad;
+    p.ramp_time_s = t.finiteNumber("ramp_time_s");
+    p.yaw_rad = t.finiteNumber("yaw_deg") * model::kDegToRad;
     t.rejectUnknownKeys();
     return buildOrReport(t, "type", [&] { return std::make_shared<const traj::Lemniscate>(p); });
   }
   if (type == "hover_descent") {
     traj::HoverDescentParams p;
-    p.position_xy_m = vec2(t.fixedNumbers("position_xy_m", 2));
-    p.from_height_m = t.number("from_height_m");
-    p.to_height_m = t.number("to_height_m");
-    p.descent_rate_mps = t.number("descent_rate_mps");
-    p.ramp_time_s = t.number("ramp_time_s");
-    p.hold_start_s = t.number("hold_start_s");
-    p.hold_end_s = t.number("hold_end_s");
-    p.yaw_rad = t.number("yaw_deg") * model::kDegToRad;
+    p.position_xy_m = vec2(fixedFinite(t, "position_xy_m", 2));
+    p.from_height_m = t.finiteNumber("from_height_m");
+    p.to_height_m = t.finiteNumber("to_height_m");
+    p.descent_rate_mps = t.finiteNumber("descent_rate_mps");
+    p.ramp_time_s = t.finiteNumber("ramp_time_s");
+    p.hold_start_s = t.finiteNumber("hold_start_s");
+    p.hold_end_s = t.finiteNumber("hold_end_s");
+    p.yaw_rad = t.finiteNumber("yaw_deg") * model::kDegToRad;
     t.rejectUnknownKeys();
     return buildOrReport(t, "type", [&] { return std::make_shared<const traj::HoverDescent>(p); });
   }
   if (type == "waypoints") {
     std::vector<traj::Waypoint> wps;
-    for (const auto& r : t.rows("points_m", 3)) wps.push_back({vec3(r), 0.0});
-    const double yaw = t.number("yaw_deg") * model::kDegToRad;
+    for (const auto& r : t.finiteRows("points_m", 3)) {
+      if (r.size() == 3) wps.push_back({vec3(r), 0.0});  // another length is a problem already
+    }
+    const double yaw = t.finiteNumber("yaw_deg") * model::kDegToRad;
     for (auto& w : wps) w.yaw_rad = yaw;
-    const double speed = t.number("average_speed_mps");
+    const double speed = t.finiteNumber("average_speed_mps");
     t.rejectUnknownKeys();
     return buildOrReport(t, "type", [&] {
       return std::make_shared<const traj::MinSnapTrajectory>(
@@ -92,20 +106,20 @@ std::shared_ptr<const sim::Terrain> readTerrain(io::MapReader& t, const std::fil
   const std::string type = t.choice("type", {"flat", "tilted", "step", "height_map"});
   std::shared_ptr<const sim::Terrain> out;
   if (type == "flat") {
-    const double z = t.number("height_m");
+    const double z = t.finiteNumber("height_m");
     out = std::make_shared<const sim::FlatGround>(z);
   } else if (type == "tilted") {
-    const Eigen::Vector3d point = vec3(t.fixedNumbers("point_m", 3));
-    const double roll = t.number("roll_deg") * model::kDegToRad;
-    const double pitch = t.number("pitch_deg") * model::kDegToRad;
+    const Eigen::Vector3d point = vec3(fixedFinite(t, "point_m", 3));
+    const double roll = t.finiteNumber("roll_deg") * model::kDegToRad;
+    const double pitch = t.finiteNumber("pitch_deg") * model::kDegToRad;
     out = buildOrReport(t, "type", [&] {
       return std::make_shared<const sim::TiltedPlane>(sim::TiltedPlane::fromTilt(point, roll, pitch));
     });
   } else if (type == "step") {
-    const Eigen::Vector2d edge = vec2(t.fixedNumbers("edge_point_xy_m", 2));
-    const Eigen::Vector2d towards = vec2(t.fixedNumbers("towards_high_xy", 2));
-    const double low = t.number("low_m");
-    const double high = t.number("high_m");
+    const Eigen::Vector2d edge = vec2(fixedFinite(t, "edge_point_xy_m", 2));
+    const Eigen::Vector2d towards = vec2(fixedFinite(t, "towards_high_xy", 2));
+    const double low = t.finiteNumber("low_m");
+    const double high = t.finiteNumber("high_m");
     out = buildOrReport(t, "type", [&] { return std::make_shared<const sim::StepTerrain>(edge, towards, low, high); });
   } else if (type == "height_map") {
     const std::string file = t.text("file");
@@ -199,14 +213,14 @@ FlightScenario parseScenarioYaml(std::string_view yaml_text, const std::string& 
   if (root.has("disturbances")) {
     auto dist = root.map("disturbances");
     s.disturbances.turbulence = dist.boolean("turbulence");
-    s.disturbances.wind_params.mean_W_mps = vec3(dist.fixedNumbers("wind_mps", 3));
-    s.disturbances.wind_params.gust_std_mps = vec3(dist.fixedNumbers("gust_std_mps", 3));
+    s.disturbances.wind_params.mean_W_mps = vec3(fixedFinite(dist, "wind_mps", 3));
+    s.disturbances.wind_params.gust_std_mps = vec3(fixedFinite(dist, "gust_std_mps", 3));
     s.disturbances.wind = s.disturbances.wind_params.mean_W_mps.norm() > 0.0 ||
                           s.disturbances.wind_params.gust_std_mps.norm() > 0.0;
     dist.rejectUnknownKeys();
   }
 
-  if (root.has("max_sim_s")) s.max_sim_s = root.number("max_sim_s");
+  if (root.has("max_sim_s")) s.max_sim_s = root.finiteNumber("max_sim_s");
   if (max_sim_s_override) s.max_sim_s = *max_sim_s_override;
 
   // The per-flight variation is the world's now: one way to describe a world.

@@ -17,6 +17,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #ifndef GEAWARE_BINARY
@@ -292,6 +293,63 @@ TEST_F(OutputSafetyTest, LogsWithoutNewlinesFailWithinASecond) {
     EXPECT_LT(r.err.size(), 1000u) << "the line is not echoed whole";
   }
   fs::remove(path("huge.csv"));
+}
+
+// --- numbers: one checked parser for every option (apps/geaware/numbers.hpp), finite file values
+
+TEST_F(OutputSafetyTest, NumericOptionsAreRangeChecked) {
+  put("x.csv", "t_s\n");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {kFly + " --seed -1", "--seed: '-1' is not a seed (expected a whole number in [0, 2^64 - 1])"},
+      {kFly + " --seed 18446744073709551616", "--seed: '18446744073709551616' is not a seed"},
+      {kFly + " --seed 1.5", "--seed: '1.5' is not a seed"},
+      {"fly --quiet --trajectory lemniscate --height nan --speed 1 --controller model:model_indi",
+       "--height: 'nan' is not a finite number (expected a number > 0)"},
+      {"fly --quiet --trajectory lemniscate --height 1 --speed inf --controller model:model_indi",
+       "--speed: 'inf' is not a finite number"},
+      {"fly --quiet --trajectory lemniscate --height 1 --speed -2 --controller model:model_indi",
+       "--speed: '-2': expected a number > 0"},
+      {kFly + " --start-hover -1", "--start-hover: '-1': expected a number >= 0"},
+      {kFly + " --max-sim-s nan", "--max-sim-s: 'nan' is not a finite number"},
+      {kFly + " --yaw-rate-gain 1e999", "--yaw-rate-gain: '1e999' is not a finite number"},
+      {"identify platform x.csv --tilt-limit nan", "--tilt-limit: 'nan' is not a finite number (expected a number in (0, 90])"},
+      {"identify platform x.csv --tilt-limit 95", "--tilt-limit: '95': expected a number in (0, 90]"},
+      {"bench --quiet --first-seed 18446744073709551615 --seeds 2", "--first-seed 18446744073709551615 + --seeds 2 - 1 is above 2^64 - 1"},
+      {"bench --quiet --seeds 0", "--seeds: '0' is not a whole number in [1, 1000]"},
+      {"rig rotor --hold nan --out y.csv", "--hold: 'nan' is not a finite number"},
+      {"rig platform --heights 0.1 --rpm 8000 --samples 1e3 --out y.csv", "--samples: '1e3' is not a whole number"},
+      {"rig platform --heights 0.1 --rpm 8000 --force-noise -1 --out y.csv", "--force-noise: '-1': expected a number >= 0"},
+  };
+  for (const auto& [args, needle] : cases) {
+    const CliRun r = geaware(args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(needle), std::string::npos) << args << "\n" << r.err;
+  }
+  EXPECT_FALSE(fs::exists(path("y.csv")));
+}
+
+// No value of a scenario file may be NaN or infinite: a NaN wind flew like no wind, an infinite
+// terrain height struck the ground "inf mm deep".
+TEST_F(OutputSafetyTest, ScenarioValuesMustBeFinite) {
+  const std::string good = get("scenario.yaml");
+  const auto edited = [&](const std::string& from, const std::string& to) {
+    std::string text = good;
+    text.replace(text.find(from), from.size(), to);
+    return text;
+  };
+  const std::vector<std::tuple<std::string, std::string, std::string>> cases = {
+      {"wind_mps: [0.0, 0.0, 0.0]", "wind_mps: [.nan, 0.0, 0.0]", "key 'disturbances.wind_mps[0]': '.nan' is not a finite number"},
+      {"gust_std_mps: [0.0, 0.0, 0.0]", "gust_std_mps: [0.0, .inf, 0.0]", "key 'disturbances.gust_std_mps[1]': '.inf' is not a finite number"},
+      {"  height_m: 0.0", "  height_m: .inf", "key 'terrain.height_m': '.inf' is not a finite number"},
+      {"yaw_deg: 0.0", "yaw_deg: .nan", "key 'trajectory.yaw_deg': '.nan' is not a finite number"},
+  };
+  for (const auto& [from, to, needle] : cases) {
+    put("bad.yaml", edited(from, to));
+    const CliRun r = geaware("fly --quiet --scenario bad.yaml");
+    EXPECT_EQ(r.exit_code, 1) << to << "\n" << r.err;
+    EXPECT_NE(r.err.find("bad.yaml:"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(needle), std::string::npos) << to << "\n" << r.err;
+  }
 }
 
 }  // namespace
