@@ -276,8 +276,8 @@ TEST_F(OutputSafetyTest, FlightsLongerThanMaxSimSAreRefusedBeforeTheyStart) {
   }
 }
 
-// A log without newlines (/dev/zero, a 300 MB sparse file) fails within a second, naming the
-// file and line and echoing at most 80 characters.
+// A log without newlines (/dev/zero, a 300 MB sparse file) fails within a second and 200 MB of
+// address space (it grew to 6 GB before), naming the file and line, echoing at most 80 characters.
 TEST_F(OutputSafetyTest, LogsWithoutNewlinesFailWithinASecond) {
   {
     std::ofstream(path("huge.csv")) << "t_s,throttle,rpm,thrust_N,torque_Nm\n";
@@ -285,7 +285,7 @@ TEST_F(OutputSafetyTest, LogsWithoutNewlinesFailWithinASecond) {
   fs::resize_file(path("huge.csv"), 300'000'000);
   for (const std::string& log : {std::string("/dev/zero"), std::string("huge.csv")}) {
     const auto start = std::chrono::steady_clock::now();
-    const CliRun r = geaware("identify rotor " + log);
+    const CliRun r = geaware("identify rotor " + log, "ulimit -v 200000; ");  // 200 MB of address space
     EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(1)) << log;
     EXPECT_EQ(r.exit_code, 1) << r.err;
     EXPECT_NE(r.err.find(log + ":"), std::string::npos) << r.err;
