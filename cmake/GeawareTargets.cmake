@@ -52,6 +52,8 @@ function(geaware_layer layer)
   # same name there (shared helpers go to a private header, e.g. src/traj/param_text.hpp).
   set_target_properties(${target} PROPERTIES UNITY_BUILD ${GEAWARE_UNITY_BUILD}
                                              UNITY_BUILD_BATCH_SIZE 6)
+  geaware_install_component(${layer} TARGET ${target} DEPS ${ARG_DEPS}
+                            LINKS ${ARG_EXTERNAL} ${ARG_PRIVATE_EXTERNAL})
 endfunction()
 
 # geaware_test(<name> SOURCES ... LIBS ...): one GoogleTest executable, registered with CTest.

@@ -19,8 +19,9 @@
 
 #include "escape.hpp"
 
-#ifndef GEAWARE_PLOTLY_JS_BUILD_PATH
-#error "GEAWARE_PLOTLY_JS_BUILD_PATH must name the plotly.min.js that CMake copies (src/report)"
+#if !defined(GEAWARE_PLOTLY_JS_BUILD_PATH) || !defined(GEAWARE_PLOTLY_JS_INSTALL_PATH) || \
+    !defined(GEAWARE_PLOTLY_JS_RELATIVE_PATH)
+#error "GEAWARE_PLOTLY_JS_*_PATH must name where plotly.min.js is copied and installed (src/report)"
 #endif
 
 namespace geaware::report {
@@ -354,7 +355,21 @@ std::filesystem::path plotlyJsPath() {
   if (const char* env = std::getenv("GEAWARE_PLOTLY_JS"); env != nullptr && *env != '\0') {
     return env;
   }
-  return GEAWARE_PLOTLY_JS_BUILD_PATH;
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  auto exists = [&](const fs::path& p) { return fs::is_regular_file(p, ec); };
+  // An installed program finds the bundle beside it (<prefix>/bin/../share/geaware/web), wherever
+  // the prefix was moved to (a Debian package installs under /usr).
+  if (const fs::path exe = fs::read_symlink("/proc/self/exe", ec); !ec && !exe.empty()) {
+    if (const fs::path p = exe.parent_path() / GEAWARE_PLOTLY_JS_RELATIVE_PATH; exists(p)) {
+      return p.lexically_normal();
+    }
+  }
+  // A program of this build tree (tests, the CLI before install), then a program of another
+  // project linking the installed library.
+  if (const fs::path p = GEAWARE_PLOTLY_JS_BUILD_PATH; exists(p)) return p;
+  if (const fs::path p = GEAWARE_PLOTLY_JS_INSTALL_PATH; exists(p)) return p;
+  return GEAWARE_PLOTLY_JS_BUILD_PATH;  // named in the error when nothing is found
 }
 
 }  // namespace geaware::report

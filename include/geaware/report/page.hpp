@@ -102,8 +102,10 @@ class Page {
   std::vector<Block> blocks_;
 };
 
-/// Where write() reads the minified plotly.js from: the environment variable GEAWARE_PLOTLY_JS
-/// when set and non-empty (installed setups), otherwise the copy CMake placed in the build tree.
+/// Where write() reads the minified plotly.js from, the first that applies: the environment
+/// variable GEAWARE_PLOTLY_JS when set and non-empty; the installed copy beside the running
+/// program (<prefix>/bin/../share/geaware/web/plotly.min.js); the copy CMake placed in the
+/// build tree; the copy installed under the configured prefix.
 [[nodiscard]] std::filesystem::path plotlyJsPath();
 
 /// Renders `html_file` to `png_file` with headless Chromium at the given window size.
