@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "commands.hpp"
+#include "geaware/io/output_file.hpp"
 #include "geaware/io/truth_file.hpp"
 
 namespace geaware::cli {
@@ -64,6 +65,8 @@ std::string truthInputFile(const std::string& reference) {
 
 int main(int argc, char** argv) {
   geaware::cli::g_command_line = geaware::io::shellQuotedCommandLine(argc, argv);
+  // Ctrl-C or a kill during a run leaves no temporary file beside an output.
+  geaware::io::removeTemporaryFilesOnSignals();
   CLI::App app{"geaware — ground-effect-aware modelling, identification and control for multicopters"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "geaware " + std::string(geaware::io::geawareVersion()) + " (" +

@@ -203,10 +203,14 @@ struct CsvReader::Impl {
             best = h;
           }
         }
-        if (!best.empty()) msg += " (did you mean '" + best + "'?)";
+        if (!best.empty()) msg += " (did you mean '" + detail::excerpt(best) + "'?)";
       }
       msg += "; found:";
-      for (std::size_t i = 0; i < header.size(); ++i) msg += (i == 0 ? " " : ", ") + header[i];
+      constexpr std::size_t kShown = 40;  // a hostile header may hold thousands of names
+      for (std::size_t i = 0; i < std::min(header.size(), kShown); ++i) {
+        msg += (i == 0 ? " " : ", ") + detail::excerpt(header[i]);
+      }
+      if (header.size() > kShown) msg += ", … (" + std::to_string(header.size() - kShown) + " more)";
       fail(header_line, missing.front(), msg);
     }
     if (!options.time_column.empty() && time_slot < 0) {
@@ -225,14 +229,14 @@ struct CsvReader::Impl {
     double v = 0.0;
     const auto [ptr, ec] = std::from_chars(first, last, v);
     if (ec == std::errc::result_out_of_range) {
-      fail(line_no, col.name, "'" + std::string(cell) + "' is out of the range of a double");
+      fail(line_no, col.name, "'" + detail::excerpt(cell) + "' is out of the range of a double");
     }
     if (ec != std::errc() || ptr != last) {
-      fail(line_no, col.name, "expected a number, got '" + std::string(cell) + "'");
+      fail(line_no, col.name, "expected a number, got '" + detail::excerpt(cell) + "'");
     }
-    if (!std::isfinite(v)) fail(line_no, col.name, "'" + std::string(cell) + "' is not finite");
+    if (!std::isfinite(v)) fail(line_no, col.name, "'" + detail::excerpt(cell) + "' is not finite");
     if (v < col.min || v > col.max) {
-      fail(line_no, col.name, "value " + std::string(cell) + " is outside the plausible range [" +
+      fail(line_no, col.name, "value " + detail::excerpt(cell) + " is outside the plausible range [" +
                                   number(col.min) + ", " + number(col.max) +
                                   "] for this column (wrong unit?)");
     }

@@ -3,7 +3,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <system_error>
@@ -28,6 +30,43 @@ int makeTemporary(const fs::path& target, fs::path& temp) {
   const int fd = ::mkstemp(pattern.data());
   if (fd >= 0) temp = pattern;
   return fd;
+}
+
+/// The temporary files of uncommitted AtomicFiles, for the signal handler: a fixed table (no
+/// allocation, lock-free atomics) that a handler may read. state: 0 free, 1 being filled,
+/// 2 holds a path to remove.
+constexpr int kTempSlots = 64;
+constexpr std::size_t kTempPathBytes = 4096;
+struct TempSlot {
+  std::atomic<int> state{0};
+  char path[kTempPathBytes];
+};
+TempSlot g_temp_slots[kTempSlots];
+
+int registerTemporary(const fs::path& temp) {
+  const std::string& p = temp.native();
+  if (p.size() >= kTempPathBytes) return -1;
+  for (int i = 0; i < kTempSlots; ++i) {
+    int expected = 0;
+    if (g_temp_slots[i].state.compare_exchange_strong(expected, 1)) {
+      std::memcpy(g_temp_slots[i].path, p.c_str(), p.size() + 1);
+      g_temp_slots[i].state.store(2);
+      return i;
+    }
+  }
+  return -1;  // more than 64 open at once: that one is not removed on a signal
+}
+
+void unregisterTemporary(int slot) {
+  if (slot >= 0) g_temp_slots[slot].state.store(0);
+}
+
+extern "C" void removeTemporariesAndDie(int sig) {
+  for (auto& slot : g_temp_slots) {
+    if (slot.state.load() == 2) ::unlink(slot.path);
+  }
+  ::signal(sig, SIG_DFL);
+  ::raise(sig);
 }
 
 /// The permissions a newly created file gets under the process's umask.
@@ -191,6 +230,7 @@ AtomicFile::AtomicFile(const std::string& path, std::string what)
   }
   const int fd = makeTemporary(out_.target, temp_);
   if (fd < 0) fail("create a temporary file for", errno);
+  slot_ = registerTemporary(temp_);
   file_ = ::fdopen(fd, "wb");
   if (file_ == nullptr) {
     const int e = errno;
@@ -204,6 +244,7 @@ AtomicFile::~AtomicFile() {
   if (file_ != nullptr) std::fclose(file_);
   std::error_code ec;
   if (!temp_.empty()) fs::remove(temp_, ec);
+  unregisterTemporary(slot_);
 }
 
 void AtomicFile::write(std::string_view text) {
@@ -233,12 +274,20 @@ void AtomicFile::commit() {
   }
   if (std::rename(temp_.c_str(), out_.target.c_str()) != 0) fail("replace", errno);
   committed_ = true;
+  unregisterTemporary(slot_);
 }
 
 void AtomicFile::fail(const std::string& action, int error_number) {
   const std::string where = out_.to_stdout ? std::string("standard output") : inQuotes(out_.given);
   throw OutputError("cannot " + action + " " + what_ + " " + where + ": " + std::strerror(error_number) +
                     (out_.to_stdout ? "" : " (the existing file, if any, is unchanged)"));
+}
+
+void removeTemporaryFilesOnSignals() {
+  struct sigaction action {};
+  action.sa_handler = removeTemporariesAndDie;
+  sigemptyset(&action.sa_mask);
+  for (const int sig : {SIGINT, SIGTERM, SIGHUP}) ::sigaction(sig, &action, nullptr);
 }
 
 void writeFileAtomically(const std::string& path, std::string_view text, std::string what) {

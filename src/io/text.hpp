@@ -1,6 +1,7 @@
 #pragma once
 // Private to io/: small text helpers the line-based readers share.
 
+#include <string>
 #include <string_view>
 
 namespace geaware::io::detail {
@@ -11,6 +12,13 @@ inline std::string_view trimBlanks(std::string_view s) {
   if (first == std::string_view::npos) return {};
   const auto last = s.find_last_not_of(" \t\r");
   return s.substr(first, last - first + 1);
+}
+
+/// `s` as echoed in a message: at most `max_chars` bytes, "…" when cut (a cell or value of a
+/// hostile file may be up to a line's 1 MiB long).
+inline std::string excerpt(std::string_view s, std::size_t max_chars = 80) {
+  if (s.size() <= max_chars) return std::string(s);
+  return std::string(s.substr(0, max_chars)) + "…";
 }
 
 }  // namespace geaware::io::detail

@@ -1,5 +1,7 @@
 #include "geaware/io/yaml_reader.hpp"
 
+#include "text.hpp"
+
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -55,8 +57,8 @@ double strictFinite(const YAML::Node& n, const std::string& path, YamlContext& c
                        lower.find("nan") != std::string::npos ||
                        lower.find("inf") != std::string::npos;
   ctx.problem(lineOfNode(n), path,
-              special ? "'" + s + "' is not a finite number"
-                      : "expected a number, got '" + s + "'");
+              special ? "'" + detail::excerpt(s) + "' is not a finite number"
+                      : "expected a number, got '" + detail::excerpt(s) + "'");
   return kNaN;
 }
 
@@ -139,7 +141,7 @@ double MapReader::number(const std::string& key) {
   double v = kNaN;
   if (!toNumber(n, v)) {
     ctx_.problem(lineOfNode(n), pathOf(key),
-                 n.IsScalar() ? "expected a number, got '" + n.Scalar() + "'"
+                 n.IsScalar() ? "expected a number, got '" + detail::excerpt(n.Scalar()) + "'"
                               : std::string("expected a number, got ") + typeName(n));
     return kNaN;
   }
@@ -172,7 +174,7 @@ std::vector<double> MapReader::numbers(const std::string& key) {
     double v = kNaN;
     if (!toNumber(n[i], v)) {
       ctx_.problem(lineOfNode(n[i]), item,
-                   n[i].IsScalar() ? "expected a number, got '" + n[i].Scalar() + "'"
+                   n[i].IsScalar() ? "expected a number, got '" + detail::excerpt(n[i].Scalar()) + "'"
                                    : std::string("expected a number, got ") + typeName(n[i]));
     }
     out.push_back(v);
@@ -211,7 +213,7 @@ bool MapReader::boolean(const std::string& key) {
   } catch (const YAML::Exception&) {
   }
   ctx_.problem(lineOfNode(n), pathOf(key),
-               n.IsScalar() ? "expected true or false, got '" + n.Scalar() + "'"
+               n.IsScalar() ? "expected true or false, got '" + detail::excerpt(n.Scalar()) + "'"
                             : std::string("expected true or false, got ") + typeName(n));
   return false;
 }
@@ -260,7 +262,7 @@ std::string MapReader::choice(const std::string& key, const std::vector<std::str
   }
   std::string list;
   for (const auto& c : choices) list += (list.empty() ? "" : ", ") + c;
-  ctx_.problem(ctx_.lineOf(pathOf(key)), pathOf(key), "got '" + v + "', expected one of: " + list);
+  ctx_.problem(ctx_.lineOf(pathOf(key)), pathOf(key), "got '" + detail::excerpt(v) + "', expected one of: " + list);
   return {};
 }
 

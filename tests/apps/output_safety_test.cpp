@@ -175,6 +175,19 @@ TEST_F(OutputSafetyTest, FlyOnAFullDiskFailsAndKeepsTheOldLog) {
   EXPECT_EQ(names(), (std::vector<std::string>{"old.csv", "scenario.yaml", "vehicle.yaml"}));
 }
 
+// A run killed in the middle (SIGTERM; SIGINT and SIGHUP the same) leaves the old log as it was
+// and no temporary file beside it.
+TEST_F(OutputSafetyTest, FlyKilledMidFlightLeavesTheOldLogAndNoTemporaryFile) {
+  put("old.csv", "old log\n");
+  const CliRun r = geaware("fly --quiet --trajectory lemniscate --height 1 --speed 0.2 --laps 20 "
+                           "--controller model:model_indi --out old.csv & pid=$!; sleep 0.7; kill -TERM $pid; "
+                           "wait $pid; echo status=$?; true",
+                           "exec ");  // the background job is geaware itself
+  EXPECT_NE(r.err.find("status=143"), std::string::npos) << "not ended by SIGTERM mid-flight: " << r.err;
+  EXPECT_EQ(get("old.csv"), "old log\n");
+  EXPECT_EQ(names(), (std::vector<std::string>{"old.csv", "scenario.yaml", "vehicle.yaml"}));
+}
+
 // A symlinked output writes its target; the link stays a link.
 TEST_F(OutputSafetyTest, FlySymlinkedOutputWritesItsTarget) {
   put("real.json", "old");

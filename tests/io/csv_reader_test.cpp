@@ -104,6 +104,29 @@ TEST_F(CsvReading, LinesOverOneMebibyteAreRefusedQuickly) {
   }
 }
 
+// A cell of a hostile file (up to a line's 1 MiB) is echoed as at most 80 bytes, and a header
+// of thousands of names is listed as its first 40.
+TEST_F(CsvReading, LongCellsAndHeadersAreNotEchoedWhole) {
+  const auto f = file("t_s,a,b\n0,1,2\n1," + std::string(500'000, '7') + "x,2\n");
+  try {
+    (void)readCsv(f, threeColumns());
+    ADD_FAILURE();
+  } catch (const CsvError& e) {
+    EXPECT_LT(std::string(e.what()).size(), f.string().size() + 200) << e.what();
+  }
+  std::string header = "t_s,b";
+  for (int i = 0; i < 5000; ++i) header += ",c" + std::to_string(i);
+  const auto g = file(header + "\n");
+  try {
+    (void)readCsv(g, threeColumns());
+    ADD_FAILURE();
+  } catch (const CsvError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("(4962 more)"), std::string::npos) << what.substr(0, 300);
+    EXPECT_LT(what.size(), 1000u);
+  }
+}
+
 TEST_F(CsvReading, StreamsRowByRow) {
   geaware::io::CsvReader reader(file("t_s,a,b\n0,1,2\n1,3,4\n"), threeColumns());
   std::vector<double> row(3);

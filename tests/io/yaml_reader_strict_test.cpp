@@ -41,6 +41,21 @@ TEST(YamlReaderStrict, FiniteNumberRejectsJunkAndNonFiniteValuesByName) {
   EXPECT_EQ(ctx.problems[4].message, "expected a number, got a list");
 }
 
+// A value of a hostile file (up to a line's 1 MiB) is echoed in a message as at most 80 bytes.
+TEST(YamlReaderStrict, LongValuesAreNotEchoedWhole) {
+  YamlContext ctx;
+  const std::string junk(500'000, 'x');
+  MapReader r(YAML::Load("a: " + junk + "\nb: " + junk + "\nc: " + junk + "\n"), "", ctx);
+  (void)r.finiteNumber("a");
+  (void)r.number("b");
+  (void)r.choice("c", {"flat", "step"});
+  ASSERT_EQ(ctx.problems.size(), 3u);
+  for (const auto& p : ctx.problems) {
+    EXPECT_LT(p.message.size(), 200u) << p.key;
+    EXPECT_NE(p.message.find(std::string(80, 'x') + "…"), std::string::npos) << p.key;
+  }
+}
+
 TEST(YamlReaderStrict, FiniteNumbersCheckTheLengthAndStillReadEveryItem) {
   YamlContext ctx;
   MapReader r(YAML::Load("v:\n  - 1\n  - .inf\n  - 3\n"), "", ctx);

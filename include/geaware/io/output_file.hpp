@@ -98,7 +98,13 @@ class AtomicFile {
   std::filesystem::path temp_;
   std::FILE* file_ = nullptr;
   bool committed_ = false;
+  int slot_ = -1;  // in the registry of temporary files removed on a signal
 };
+
+/// Installs handlers for SIGINT, SIGTERM and SIGHUP that remove the temporary files of every
+/// uncommitted AtomicFile and then end the process by the same signal (its targets are then
+/// untouched and nothing is left beside them). The CLI's main calls it once.
+void removeTemporaryFilesOnSignals();
 
 /// Writes `text` to `path` ("-": stdout) as one AtomicFile.
 void writeFileAtomically(const std::string& path, std::string_view text, std::string what);
