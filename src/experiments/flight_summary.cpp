@@ -14,11 +14,13 @@ std::string controllerName(const control::ControllerParams& p) {
 
 std::string formatFlight(const FlightResult& r) {
   const auto& m = r.tracking;
-  std::string s = fmt::format(
-      "RMSE XOY {:.2f} cm, Z {:.2f} cm, all {:.2f} cm; max ‖E_P‖ {:.2f} cm; σ‖E_P‖ {:.2f} cm "
-      "({} samples)\n",
-      m.rmse_xy_m * 100, m.rmse_z_m * 100, m.rmse_all_m * 100, m.max_m * 100, m.std_m * 100,
-      m.samples);
+  // A flight that ended before the trajectory has no tracking error (it printed RMSE 0).
+  std::string s = m.samples == 0
+                      ? std::string("RMSE none: no sample on the trajectory (0 samples)\n")
+                      : fmt::format("RMSE XOY {:.2f} cm, Z {:.2f} cm, all {:.2f} cm; max ‖E_P‖ {:.2f} cm; "
+                                    "σ‖E_P‖ {:.2f} cm ({} samples)\n",
+                                    m.rmse_xy_m * 100, m.rmse_z_m * 100, m.rmse_all_m * 100, m.max_m * 100,
+                                    m.std_m * 100, m.samples);
   s += r.crash ? "CRASHED: " + r.crash_description + "\n" : std::string("completed, no crash\n");
   std::string flags;
   for (int b = 0; b < kControllerFlagBits; ++b) {
@@ -34,9 +36,11 @@ std::string formatFlight(const FlightResult& r) {
 
 io::Json flightJson(const FlightScenario& s, const FlightResult& r) {
   const auto& m = r.tracking;
-  io::Json j = {{"rmse_xy_cm", m.rmse_xy_m * 100}, {"rmse_z_cm", m.rmse_z_m * 100},
-                {"rmse_all_cm", m.rmse_all_m * 100}, {"max_cm", m.max_m * 100},
-                {"std_cm", m.std_m * 100},          {"crashed", r.crash.has_value()}};
+  // No sample on the trajectory (a strike before it): the metrics are null, not 0.
+  const auto cm = [&m](double v_m) { return m.samples == 0 ? io::Json(nullptr) : io::Json(v_m * 100); };
+  io::Json j = {{"rmse_xy_cm", cm(m.rmse_xy_m)}, {"rmse_z_cm", cm(m.rmse_z_m)},
+                {"rmse_all_cm", cm(m.rmse_all_m)}, {"max_cm", cm(m.max_m)},
+                {"std_cm", cm(m.std_m)},          {"crashed", r.crash.has_value()}};
   if (r.crash) {
     const auto& p = r.crash->point_W;
     j["crash"] = {{"t_s", r.crash->t_s},

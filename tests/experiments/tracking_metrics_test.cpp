@@ -1,4 +1,5 @@
 #include "geaware/experiments/tracking_metrics.hpp"
+#include "geaware/experiments/flight_summary.hpp"
 
 #include <cmath>
 #include <random>
@@ -41,6 +42,28 @@ TEST(TrackingMetrics, NonFiniteSamplesAreCountedNotUsed) {
   EXPECT_EQ(acc.rejected(), 1u);
   EXPECT_DOUBLE_EQ(acc.result().rmse_all_m, 0.1);
   EXPECT_EQ(TrackingAccumulator().result().samples, 0u);
+}
+
+}  // namespace
+
+// A flight that ended before its trajectory (a strike in the start hover) has no tracking
+// error: its JSON metrics are null and its summary says so, not RMSE 0 (issue 16's sweep).
+namespace {
+
+TEST(TrackingMetrics, NoSampleIsNullNotZero) {
+  geaware::experiments::FlightScenario s;
+  geaware::experiments::FlightResult r;
+  r.tracking = TrackingAccumulator().result();
+  const auto j = geaware::experiments::flightJson(s, r);
+  for (const char* key : {"rmse_xy_cm", "rmse_z_cm", "rmse_all_cm", "max_cm", "std_cm"}) {
+    EXPECT_TRUE(j[key].is_null()) << key;
+  }
+  EXPECT_NE(geaware::experiments::formatFlight(r).find("RMSE none: no sample on the trajectory"),
+            std::string::npos);
+  TrackingAccumulator one;
+  one.add({0.0, 0.0, 0.0});
+  r.tracking = one.result();
+  EXPECT_EQ(geaware::experiments::flightJson(s, r)["rmse_all_cm"], 0.0);
 }
 
 }  // namespace
