@@ -39,6 +39,11 @@ std::string readInputFile(const std::filesystem::path& file, std::string_view no
                                   : ": no such " + std::string(noun)));
   }
   noteInputFile(file, noun);
+  const std::uintmax_t size = std::filesystem::file_size(file, ec);
+  if (!ec && size > kMaxInputFileBytes) {
+    throw std::runtime_error(file.string() + ": " + std::to_string(size) + " bytes, larger than a " +
+                             std::string(noun) + " can be (at most 64 MiB; expected a " + std::string(kind) + ")");
+  }
   std::ifstream in(file, std::ios::binary);
   if (!in) throw std::runtime_error(file.string() + ": cannot read " + std::string(noun));
   std::string text;

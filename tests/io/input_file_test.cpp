@@ -37,7 +37,7 @@ TEST(InputFile, ReturnsTheBytesUnchanged) {
   EXPECT_EQ(readInputFile(f, "vehicle file", "vehicle YAML file"), bytes);
 }
 
-// A line over 1 MiB is refused with its line number and at most 80 characters of it; a 300 MB
+// A line over 1 MiB is refused with its line number and at most 80 characters of it; a 60 MB
 // file without a newline (sparse) fails within a second, without reading it whole.
 TEST(InputFile, LinesOverOneMebibyteAreRefusedQuickly) {
   const auto f = tempDir() / "long.yaml";
@@ -47,7 +47,7 @@ TEST(InputFile, LinesOverOneMebibyteAreRefusedQuickly) {
   EXPECT_LT(msg.size(), f.string().size() + 200);
   const auto huge = tempDir() / "huge.yaml";
   { std::ofstream(huge) << "a: "; }
-  std::filesystem::resize_file(huge, 300'000'000);
+  std::filesystem::resize_file(huge, 60'000'000);  // under the 64 MiB of a whole-file input
   const auto start = std::chrono::steady_clock::now();
   EXPECT_NE(errorOf(huge).find(":1: line longer than 1 MiB (starts 'a: \\x00"), std::string::npos);
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(1));
@@ -55,6 +55,18 @@ TEST(InputFile, LinesOverOneMebibyteAreRefusedQuickly) {
   // Exactly at the limit is fine.
   std::ofstream(f, std::ios::binary) << std::string(kMaxLineBytes, 'x') << "\n";
   EXPECT_EQ(errorOf(f), "");
+}
+
+// A file larger than any input of its kind can be is refused before it is read.
+TEST(InputFile, FilesOver64MebibytesAreRefusedUnread) {
+  const auto huge = tempDir() / "huge.yaml";
+  { std::ofstream(huge) << "a: 1\n"; }
+  std::filesystem::resize_file(huge, kMaxInputFileBytes + 1);
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_EQ(errorOf(huge), huge.string() + ": 67108865 bytes, larger than a vehicle file can be (at most 64 MiB; "
+                                           "expected a vehicle YAML file)");
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::milliseconds(100));
+  std::filesystem::remove(huge);
 }
 
 TEST(InputFile, MissingFileAndDirectoryAreNamedErrors) {

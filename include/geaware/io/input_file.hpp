@@ -3,6 +3,7 @@
 // errors every reader gives the same way.
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -10,7 +11,13 @@
 
 namespace geaware::io {
 
-/// The bytes of `file` (a regular file, every line under kMaxLineBytes). Throws std::runtime_error naming the file: "<file>: no such <noun>",
+/// The largest whole-file input (vehicle, truth, scenario, weight and height-map files are
+/// kilobytes; the YAML parser holds several copies of what it reads): a larger one is refused
+/// before it is read.
+inline constexpr std::uintmax_t kMaxInputFileBytes = std::uintmax_t{64} << 20;
+
+/// The bytes of `file` (a regular file of at most kMaxInputFileBytes, every line under
+/// kMaxLineBytes). Throws std::runtime_error naming the file: "<file>: no such <noun>",
 /// "<file>: not a regular file (expected a <kind>)" or "<file>: cannot read <noun>", where
 /// `noun` is e.g. "vehicle file" and `kind` "vehicle YAML file".
 [[nodiscard]] std::string readInputFile(const std::filesystem::path& file, std::string_view noun,
