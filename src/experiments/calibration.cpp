@@ -9,13 +9,17 @@
 
 #include <fmt/format.h>
 
+#include "calibration_flights.hpp"
 #include "geaware/experiments/rig_runs.hpp"
+#include "geaware/experiments/world_setup.hpp"
 #include "geaware/ident/identify.hpp"
 #include "geaware/model/field_check.hpp"
 #include "geaware/model/ground_effect.hpp"
 #include "geaware/model/vehicle_schema.hpp"
 #include "geaware/ident/rig_logs.hpp"
+#include "geaware/model/rotor_drag.hpp"
 #include "geaware/model/units.hpp"
+#include "geaware/sim/sampling.hpp"
 
 namespace geaware::experiments {
 namespace {
@@ -178,6 +182,7 @@ model::VehicleParams mergeIdentified(const model::VehicleParams& file_vehicle, c
   c.parameters.push_back({"rotor.k_T_N_per_rpm2 (stand, not used)", "N/rpm²", kStand,
                           file_vehicle.rotor.k_T_N_per_rpm2, rotor.k_T_N_per_rpm2.value,
                           rotor.k_T_N_per_rpm2.std_error});
+  c.k_T_stand_N_per_rpm2 = rotor.k_T_N_per_rpm2.value;
   // The stand's own keys (J_R, the throttle curve); J_R stays the file's when the speed steps
   // did not determine it.
   if (!rotor.J_R_kgm2) take("rotor.J_R_kgm2", kStand, {file_vehicle.rotor.J_R_kgm2, 0.0});
@@ -185,8 +190,10 @@ model::VehicleParams mergeIdentified(const model::VehicleParams& file_vehicle, c
     if (p.name != "rotor.k_T_N_per_rpm2" && p.name != "rotor.k_I_Nm_per_rpm2") take(p.name, kStand, p.estimate);
   }
   const auto& f = platform.fits;
-  take("rotor.k_T_N_per_rpm2", "platform, level board",
-       f.additional_thrust ? f.additional_thrust->k_T_N_per_rpm2 : f.additional_thrust_table->k_T_N_per_rpm2);
+  const ident::Estimate& k_T_platform =
+      f.additional_thrust ? f.additional_thrust->k_T_N_per_rpm2 : f.additional_thrust_table->k_T_N_per_rpm2;
+  take("rotor.k_T_N_per_rpm2", "platform, level board", k_T_platform);
+  c.k_T_platform_N_per_rpm2 = k_T_platform.value;
   takeCurve("additional_thrust", "F_G", "platform, level board");
   // The mixing coefficients: the platform's keys outside the curves, k_T aside.
   for (const auto& p : platform.parameters) {
@@ -239,15 +246,91 @@ void compareCurves(const model::VehicleParams& file_vehicle, const sim::TruthPar
   }
 }
 
+/// Steps 5 and 6: the scale's reading of the truth's mass, the CAD inertia kept.
+void weigh(const model::VehicleParams& file_vehicle, const CalibrationWorld& world,
+           const CalibrationSweeps& sweeps, ControllerCalibration& c) {
+  sim::NoiseSource scale(sweeps.seed, salt::kScaleReading);
+  c.scale_error_std_kg = world.scale_error_std_kg;
+  c.scale_reading_kg = world.flights.truth->mass_kg + world.scale_error_std_kg * scale.normal();
+  c.vehicle.mass_kg = c.scale_reading_kg;
+  c.parameters.push_back({"mass_kg", "kg", fmt::format("scale (σ = {:g} g)", 1e3 * world.scale_error_std_kg),
+                          file_vehicle.mass_kg, c.scale_reading_kg, world.scale_error_std_kg});
+  const char* axes[3] = {"xx", "yy", "zz"};
+  for (int a = 0; a < 3; ++a) {
+    const double J = file_vehicle.inertia_kgm2(a);
+    c.parameters.push_back({fmt::format("inertia_kgm2.{}", axes[a]), "kg·m²",
+                            "CAD (vehicle file): not measured", J, c.vehicle.inertia_kgm2(a), 0.0});
+  }
+}
+
+/// Steps 7 and 8: the hover flight's k_T, then the drag flights' D(h), each flown with the
+/// belief as it stands.
+void fly(const model::VehicleParams& file_vehicle, const CalibrationWorld& world,
+         const CalibrationSweeps& sweeps, ControllerCalibration& c) {
+  const detail::HoverCalibration hover = detail::calibrateHover(c.vehicle, world, sweeps);
+  c.k_T_hover_N_per_rpm2 = hover.fit.k_T_N_per_rpm2.value;
+  c.vehicle.rotor.k_T_N_per_rpm2 = c.k_T_hover_N_per_rpm2;
+  // The platform's k_T stays listed (F_G's and M_G's fit scale) but is not what the controller
+  // flies with: docs/results.md, "How the campaign is set up".
+  for (auto& p : c.parameters) {
+    if (p.key == "rotor.k_T_N_per_rpm2") p.key += " (platform, not flown)";
+  }
+  c.parameters.push_back({"rotor.k_T_N_per_rpm2", "N/rpm²",
+                          fmt::format("hover flight at {:g} m ({:g} s)", sweeps.hover_height_m, sweeps.hover_s),
+                          file_vehicle.rotor.k_T_N_per_rpm2, c.k_T_hover_N_per_rpm2,
+                          hover.fit.k_T_N_per_rpm2.std_error});
+  c.warnings.insert(c.warnings.end(), hover.fit.warnings.begin(), hover.fit.warnings.end());
+  c.flights.push_back(hover.flight);
+
+  const detail::DragCalibration drag = detail::calibrateDrag(c.vehicle, world, sweeps);
+  model::DragTableParams table;
+  for (std::size_t k = 0; k < drag.bands.size(); ++k) {
+    const ident::DragBand& b = drag.bands[k];
+    table.heights_m.push_back(b.h_mean_m);
+    table.d_x_N_per_mps.push_back(b.d_x_N_per_mps.value);
+    table.d_y_N_per_mps.push_back(b.d_y_N_per_mps.value);
+    const std::string source = fmt::format("drag flight at {:g} m", sweeps.drag_heights_m[k]);
+    const Eigen::Vector2d file_d = model::RotorDragModel(file_vehicle.drag).coefficients(b.h_mean_m);
+    c.parameters.push_back({fmt::format("drag d_x(h = {:.3f} m)", b.h_mean_m), "N/(m/s)", source,
+                            file_d.x(), b.d_x_N_per_mps.value, b.d_x_N_per_mps.std_error});
+    c.parameters.push_back({fmt::format("drag d_y(h = {:.3f} m)", b.h_mean_m), "N/(m/s)", source,
+                            file_d.y(), b.d_y_N_per_mps.value, b.d_y_N_per_mps.std_error});
+  }
+  c.vehicle.drag = table;
+  c.warnings.insert(c.warnings.end(), drag.warnings.begin(), drag.warnings.end());
+  c.flights.insert(c.flights.end(), drag.flights.begin(), drag.flights.end());
+}
+
+void weighAndFly(const model::VehicleParams& file_vehicle, const CalibrationWorld& world,
+                 const CalibrationSweeps& sweeps, ControllerCalibration& c) {
+  weigh(file_vehicle, world, sweeps, c);
+  if (sweeps.flights) {
+    fly(file_vehicle, world, sweeps, c);
+    c.vehicle.name = file_vehicle.name + " (calibrated: rigs, scale, hover and drag flights)";
+  } else {
+    c.vehicle.name = file_vehicle.name + " (calibrated: rigs and scale)";
+  }
+}
+
 }  // namespace
 
+CalibrationWorld calibrationWorld(const sim::World& world) {
+  CalibrationWorld w;
+  applyWorld(w.flights, world);
+  w.scale_error_std_kg = world.team_scale_error_std_kg;
+  return w;
+}
+
 ControllerCalibration calibrateController(const model::VehicleParams& file_vehicle,
-                                          const sim::TruthParams& truth,
+                                          const CalibrationWorld& world,
                                           const CalibrationSweeps& sweeps) {
+  if (!world.flights.truth) throw std::invalid_argument("calibration: the world has no truth");
+  const sim::TruthParams& truth = *world.flights.truth;
   ControllerCalibration c;
   const RigLogs logs = runRigs(file_vehicle, truth, sweeps, c);
   const Identified identified = identifyOnRigs(logs, file_vehicle, sweeps, c);
   c.vehicle = mergeIdentified(file_vehicle, identified, c);
+  weighAndFly(file_vehicle, world, sweeps, c);
   if (const auto errors = c.vehicle.validate(); !errors.empty()) {
     throw std::invalid_argument(model::describeErrors(
         "calibration: the identified parameters are not a valid vehicle:", errors));

@@ -144,11 +144,10 @@ void summariseFlights(const CampaignOptions& o, const std::vector<std::uint64_t>
   }
 }
 
-/// The scenario every flight starts from: the identified controller vehicle, the world.
-FlightScenario baseScenario(const CampaignOptions& o, const CampaignResult& r,
-                            const sim::World& world) {
+/// The scenario every flight starts from (the calibration's flights too): the world; the
+/// controller's vehicle is set after the calibration.
+FlightScenario baseScenario(const CampaignOptions& o, const sim::World& world) {
   FlightScenario base;
-  base.vehicle = r.calibration.vehicle;
   applyWorld(base, world);
   if (!o.turbulence) base.disturbances.turbulence = false;
   base.start_hover_s = o.start_hover_s;
@@ -169,14 +168,16 @@ CampaignResult runCampaign(const CampaignOptions& o) {
 
   // 1. Calibration on the truth.
   const sim::World world = o.world ? *o.world : sim::idealWorld(o.vehicle);
-  const sim::TruthParams& truth = world.truth;
-  say("calibration: virtual platform (level, tilted, rpm differences) and rotor stand on the truth");
+  say("calibration: virtual platform (level, tilted, rpm differences) and rotor stand on the truth, "
+      "the scale, a hover flight and two drag flights");
   auto t0 = Clock::now();
-  r.calibration = calibrateController(o.vehicle, truth, o.calibration);
+  FlightScenario base = baseScenario(o, world);
+  r.calibration = calibrateController(o.vehicle, {base, world.team_scale_error_std_kg}, o.calibration);
+  base.vehicle = r.calibration.vehicle;
   r.calibration_s = since(t0);
-  say(fmt::format("calibration: {} platform + {} stand rows identified in {:.2f} s",
-                  r.calibration.platform_rows, r.calibration.stand_rows, r.calibration_s));
-  const FlightScenario base = baseScenario(o, r, world);
+  say(fmt::format("calibration: {} platform + {} stand rows, {} flights, identified in {:.2f} s",
+                  r.calibration.platform_rows, r.calibration.stand_rows, r.calibration.flights.size(),
+                  r.calibration_s));
 
   // 2. Neural-Lander, when experiment 3 is flown.
   if (std::find(o.experiments.begin(), o.experiments.end(), 3) != o.experiments.end()) {

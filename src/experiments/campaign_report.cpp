@@ -54,8 +54,9 @@ void addTables(report::Page& page, const CampaignResult& r) {
                            c.pass ? "pass" : "FAIL"});
   }
   page.addTable(std::move(checks));
-  report::Table cal{"Calibration: parameters identified on the virtual rigs (the controller's)",
-                    {"parameter", "vehicle file", "identified", "std. error", "rig"},
+  report::Table cal{"Calibration: the controller's parameters and where each was measured "
+                    "(rigs, scale, hover and drag flights; CAD)",
+                    {"parameter", "vehicle file", "measured", "std. error", "source"},
                     {}};
   for (const auto& p : r.calibration.parameters) {
     cal.rows.push_back({p.key + " [" + p.unit + "]", fmt::format("{:.6g}", p.file_value),

@@ -28,14 +28,24 @@ std::string configurationCells(const TableOneExperiment& x) {
 std::string calibrationText(const CampaignResult& r) {
   std::string s;
   const auto& cal = r.calibration;
-  s += fmt::format("Calibration on the virtual rigs (holding the world's rotors): "
-                   "{} platform rows, {} stand rows, {:.2f} s\n",
-                   cal.platform_rows, cal.stand_rows, r.calibration_s);
-  s += fmt::format("  {:<42} {:>14} {:>14} {:>10}  {}\n", "parameter", "vehicle file", "identified",
-                   "std. err.", "rig");
+  s += fmt::format("Calibration as a team would (rigs holding the world's rotors, the scale, {} "
+                   "flight{} in the world): {} platform rows, {} stand rows, {:.2f} s\n",
+                   cal.flights.size(), cal.flights.size() == 1 ? "" : "s", cal.platform_rows,
+                   cal.stand_rows, r.calibration_s);
+  s += fmt::format("  {:<42} {:>14} {:>14} {:>10}  {}\n", "parameter", "vehicle file", "measured",
+                   "std. err.", "source");
   for (const auto& p : cal.parameters) {
     s += fmt::format("  {:<42} {:>14.6g} {:>14.6g} {:>10.2g}  {}\n", p.key, p.file_value,
                      p.identified, p.std_error, p.source);
+  }
+  if (cal.k_T_hover_N_per_rpm2 > 0.0) {
+    s += fmt::format("  k_T [N/rpm²]: stand {:.5g}, platform {:.5g}, hover flight {:.5g} (flown; the "
+                     "paper's 4.0083e-08, 3.7840e-08, 4.2958e-08)\n",
+                     cal.k_T_stand_N_per_rpm2, cal.k_T_platform_N_per_rpm2, cal.k_T_hover_N_per_rpm2);
+  }
+  for (const auto& f : cal.flights) {
+    s += fmt::format("  flight '{}': mean logged height {:.3f} m, {} samples, guard {:.3f} s\n",
+                     f.purpose, f.mean_height_m, f.samples, f.guard_active_s);
   }
   s += "  F_G(h): truth (noise-free level board) / identified / vehicle file\n";
   for (const auto& pt : cal.thrust_ratio) {
@@ -272,7 +282,21 @@ io::Json calibrationJson(const ControllerCalibration& cal) {
     ratio.push_back(
         {{"h_m", p.h_m}, {"truth", p.truth}, {"identified", p.identified}, {"vehicle_file", p.file}});
   }
-  return {{"parameters", std::move(parameters)}, {"thrust_ratio", std::move(ratio)}};
+  io::Json flights = io::Json::array();
+  for (const auto& f : cal.flights) {
+    flights.push_back({{"purpose", f.purpose},
+                       {"reference_height_m", f.reference_height_m},
+                       {"mean_height_m", f.mean_height_m},
+                       {"samples", f.samples},
+                       {"guard_active_s", f.guard_active_s}});
+  }
+  io::Json k_T = {{"stand", cal.k_T_stand_N_per_rpm2}, {"platform", cal.k_T_platform_N_per_rpm2}};
+  k_T["hover"] = cal.k_T_hover_N_per_rpm2 > 0.0 ? io::Json(cal.k_T_hover_N_per_rpm2) : io::Json(nullptr);
+  return {{"parameters", std::move(parameters)},
+          {"scale", {{"reading_kg", cal.scale_reading_kg}, {"std_kg", cal.scale_error_std_kg}}},
+          {"k_T_N_per_rpm2", std::move(k_T)},
+          {"flights", std::move(flights)},
+          {"thrust_ratio", std::move(ratio)}};
 }
 
 }  // namespace

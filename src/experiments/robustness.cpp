@@ -246,16 +246,18 @@ struct CalibratedWorld {
 };
 
 CalibratedWorld calibrate(const RobustnessOptions& o, const std::string& name,
-                          const FlightScenario& world, const std::string& world_key,
-                          RobustnessResult& r) {
+                          const FlightScenario& world, double scale_error_std_kg,
+                          const std::string& world_key, RobustnessResult& r) {
   auto say = [&](const std::string& m) {
     if (o.progress != nullptr) o.progress->message(m);
   };
   CalibratedWorld w;
   w.calibration.world = name;
-  say(fmt::format("calibration ({}): virtual platform and rotor stand on the truth", name));
+  say(fmt::format("calibration ({}): virtual platform and rotor stand on the truth, the scale, "
+                  "hover and drag flights", name));
   auto t0 = Clock::now();
-  w.calibration.calibration = calibrateController(o.vehicle, *world.truth, o.calibration);
+  w.calibration.calibration =
+      calibrateController(o.vehicle, {world, scale_error_std_kg}, o.calibration);
   r.calibration_s += since(t0);
   w.base = world;
   w.base.vehicle = w.calibration.calibration.vehicle;
@@ -302,7 +304,8 @@ RobustnessResult runRobustness(const RobustnessOptions& o) {
   const std::string world_key = io::truthSectionYaml(unperturbed);
   const FlightScenario world = worldScenario(o, unperturbed);
   std::vector<CalibratedWorld> worlds;
-  worlds.push_back(calibrate(o, "none", world, world_key, r));
+  const double scale_std = unperturbed.team_scale_error_std_kg;
+  worlds.push_back(calibrate(o, "none", world, scale_std, world_key, r));
   std::vector<std::size_t> world_of_case;
   for (const auto& p : o.cells) {
     if (!p.recalibrates()) {
@@ -311,7 +314,7 @@ RobustnessResult runRobustness(const RobustnessOptions& o) {
     }
     FlightScenario changed = world;
     applyPerturbation(p, changed);
-    worlds.push_back(calibrate(o, p.name, changed, world_key, r));
+    worlds.push_back(calibrate(o, p.name, changed, scale_std, world_key, r));
     world_of_case.push_back(worlds.size() - 1);
   }
   for (const auto& w : worlds) r.calibrations.push_back(w.calibration);

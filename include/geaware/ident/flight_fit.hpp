@@ -6,6 +6,9 @@
 //    m·a_ext,z + k_T·Σn² is fitted as k_T'·Σn²·(1 + g2/(h² + g1)), with Ceres and a robust loss:
 //    k_T' is the hover's own k_T (it equals k_T when the observer's k_T was right), fixed by the
 //    heights out of ground effect. Assumes a near-level attitude (z_Wᵀz_B ≈ 1), as in a hover.
+//  - k_T alone from a hover out of ground effect (the paper's third k_T, from its hovering
+//    flight): the same total z force fitted as k_T'·Σn²·(1 + F_G(h)) with the base vehicle's
+//    F_G (≈ 0 above 1 m), one linear parameter; the log's heights need not vary.
 //  - the drag table D(h) (paper eq. 20): in the body frame the in-plane external force is the
 //    rotor drag, m·x_Bᵀã_ext = −d_x·x_Bᵀv and m·y_Bᵀã_ext = −d_y·y_Bᵀv (f_G is along z_B and
 //    does not enter); per height band, linear least squares gives d_x(h) and d_y(h).
@@ -28,6 +31,22 @@ namespace geaware::ident {
 [[nodiscard]] AdditionalThrustFit fitHoverAdditionalThrust(const FlightLog& log, double mass_kg,
                                                       double k_T_N_per_rpm2,
                                                       const RobustOptions& robust = {});
+
+/// k_T in hover out of ground effect (one parameter; F_G(h) is `base`'s curve, not fitted).
+struct HoverThrustFit {
+  Estimate k_T_N_per_rpm2;  ///< the hover's own k_T' [N/rpm²]
+  FitStats stats;           ///< residuals in N
+  double h_min_m = kNaN;    ///< lowest and highest logged height [m]
+  double h_max_m = kNaN;
+  std::vector<std::string> warnings;
+};
+
+/// `base` gives the mass and the k_T the log's external acceleration was computed with, and
+/// F_G(h). Warns when the log goes below `min_height_m` (F_G is then not negligible and its
+/// error enters k_T'). Throws IdentError when the log has no usable sample.
+[[nodiscard]] HoverThrustFit fitHoverThrust(const FlightLog& log, const model::VehicleParams& base,
+                                            double min_height_m = 1.0,
+                                            const RobustOptions& robust = {});
 
 struct DragFitOptions {
   RobustOptions robust;
