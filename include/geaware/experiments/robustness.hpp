@@ -1,8 +1,8 @@
 #pragma once
 // The robustness suite (issue 10, item 4; `geaware bench --suite robustness`;
 // docs/robustness.md). The controller's belief is calibrated ONCE on the unperturbed world (the
-// campaign's calibrateController on the rigs, and the Neural-Lander training when a `neural`
-// configuration is flown); then the world changes, one cell at a time, as a real vehicle's does
+// campaign's calibrateController: the rigs, the scale, the hover and drag flights in that world;
+// and the Neural-Lander training when a `neural` configuration is flown); then the world changes, one cell at a time, as a real vehicle's does
 // after its calibration: mass, thrust coefficient, motor spread, CoG, in-flight cushion, mocap
 // latency the estimator does not know, room air. Two cells change the physics itself (another
 // ground-effect law family, sim::GroundEffectLaw) and re-run the rigs and the identification
