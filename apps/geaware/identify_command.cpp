@@ -159,7 +159,7 @@ int runIdentify(const IdentifyOptions& opt) {
   }
   // Every output checked before the log is read (docs/reliability.md).
   io::OutputChecks files;
-  files.input("the log", opt.log);
+  files.input("LOG", opt.log);
   files.input("--vehicle", opt.vehicle);
   files.output("--out", opt.out, false);
   files.output("--json", opt.json);

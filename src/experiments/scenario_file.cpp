@@ -56,6 +56,25 @@ auto buildOrReport(io::MapReader& section, const std::string& key, Make make) ->
   }
 }
 
+/// The minimum-snap segments take max(length / average_speed_mps, 0.5 s) (the floor of
+/// traj::MinSnapTrajectory::fromAverageSpeed): a speed that would make a segment shorter than
+/// the floor was flown slower than asked, silently (issue 16). It is a problem at the key.
+void checkSegmentTimes(io::MapReader& t, const std::vector<traj::Waypoint>& wps, double speed_mps) {
+  constexpr double kMinSegmentS = 0.5;
+  if (!(std::isfinite(speed_mps) && speed_mps > 0.0)) return;  // the trajectory reports it
+  for (std::size_t i = 0; i + 1 < wps.size(); ++i) {
+    const double length_m = (wps[i + 1].p_W - wps[i].p_W).norm();
+    if (length_m > 0.0 && length_m / speed_mps < kMinSegmentS) {
+      std::ostringstream os;
+      os << "got " << speed_mps << " m/s, expected at most " << length_m / kMinSegmentS << " m/s: segment "
+         << i + 1 << " (" << length_m << " m) would take less than the trajectory's minimum segment time of "
+         << kMinSegmentS << " s and be flown slower than asked";
+      t.problem("average_speed_mps", os.str());
+      return;
+    }
+  }
+}
+
 std::shared_ptr<const traj::Trajectory> readTrajectory(io::MapReader& t) {
   const std::string type = t.choice("type", {"lemniscate", "hover_descent", "waypoints"});
   if (type == "lemniscate") {
@@ -92,6 +111,7 @@ std::shared_ptr<const traj::Trajectory> readTrajectory(io::MapReader& t) {
     const double yaw = t.finiteNumber("yaw_deg") * model::kDegToRad;
     for (auto& w : wps) w.yaw_rad = yaw;
     const double speed = t.finiteNumber("average_speed_mps");
+    checkSegmentTimes(t, wps, speed);
     t.rejectUnknownKeys();
     return buildOrReport(t, "type", [&] {
       return std::make_shared<const traj::MinSnapTrajectory>(

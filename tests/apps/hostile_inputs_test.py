@@ -119,7 +119,8 @@ def cases():
           ["rig", "platform", "--heights", "0.1", "--rpm", "8000", "--force-noise", "nan", "--out", "y.csv"],
           ["model", "--heights", "nan:1:0.1"], ["model", "--heights", "0.1:1:0"]]
     c += [["fly", "--quiet", "--scenario", name] for name in
-          ["nan_wind.yaml", "inf_gust.yaml", "inf_terrain.yaml", "nan_yaw.yaml", "neg_speed.yaml"]]
+          ["nan_wind.yaml", "inf_gust.yaml", "inf_terrain.yaml", "nan_yaw.yaml", "neg_speed.yaml",
+           "fast_waypoints.yaml"]]
     c += [FLY + ["--vehicle", name] for name in ["nan_vehicle.yaml", "inf_vehicle.yaml"]]
     c += [FLY + ["--truth", "nan_truth.yaml"]]
     return c
@@ -144,6 +145,8 @@ def setup(d):
     a, b = text.index("trajectory:"), text.index("controller:")
     w("far.yaml", text[:a] + "trajectory:\n  type: waypoints\n  points_m: [[0, 0, 1], [10000000, 0, 1]]\n"
       "  average_speed_mps: 1.0\n  yaw_deg: 0.0\n\n" + text[b:])
+    w("fast_waypoints.yaml", text[:a] + "trajectory:\n  type: waypoints\n  points_m: [[0, 0, 1], [1, 0, 1]]\n"
+      "  average_speed_mps: 3.0\n  yaw_deg: 0.0\n\n" + text[b:])
     vehicle = os.path.join(d, "vehicle.yaml")
     w("nan_vehicle.yaml", edited(vehicle, "mass_kg: 1.696", "mass_kg: .nan"))
     w("inf_vehicle.yaml", edited(vehicle, "k_T_N_per_rpm2: 4.0083e-8", "k_T_N_per_rpm2: .inf"))

@@ -205,7 +205,7 @@ TEST_F(OutputSafetyTest, IdentifyOutputThatIsTheLogOrTheVehicleIsRefused) {
   fs::create_symlink("vehicle.yaml", path("link.yaml"));
   for (const std::string opt : {"--out", "--json"}) {
     expectRefused("identify rotor rotor.csv " + opt + " rotor.csv",
-                  {opt + " 'rotor.csv'", "the input the log 'rotor.csv'"});
+                  {opt + " 'rotor.csv'", "the input LOG 'rotor.csv'"});
     expectRefused("identify rotor rotor.csv --vehicle vehicle.yaml " + opt + " link.yaml",
                   {opt + " 'link.yaml'", "--vehicle 'vehicle.yaml'"});
   }
@@ -363,6 +363,29 @@ TEST_F(OutputSafetyTest, ScenarioValuesMustBeFinite) {
     EXPECT_NE(r.err.find("bad.yaml:"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find(needle), std::string::npos) << to << "\n" << r.err;
   }
+}
+
+// Waypoint speeds the minimum-snap trajectory would cap (its 0.5 s minimum segment time) were
+// flown slower than asked, silently: now a problem at the key; a speed it can fly still flies.
+TEST_F(OutputSafetyTest, WaypointSpeedsTheTrajectoryWouldCapAreRefused) {
+  std::string text = get("scenario.yaml");
+  const auto a = text.find("trajectory:");
+  const auto b = text.find("controller:");
+  const auto waypoints = [&](const std::string& speed) {
+    std::string t = text;
+    t.replace(a, b - a,
+              "trajectory:\n  type: waypoints\n  points_m: [[-1, 0, 1], [0, 0, 1], [0, 0, 1], [1, 0, 1]]\n"
+              "  average_speed_mps: " + speed + "\n  yaw_deg: 0.0\n\n");
+    return t;
+  };
+  put("fast.yaml", waypoints("3"));
+  const CliRun r = geaware("fly --quiet --scenario fast.yaml");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("key 'trajectory.average_speed_mps': got 3 m/s, expected at most 2 m/s: segment 1 (1 m)"),
+            std::string::npos) << r.err;
+  put("ok.yaml", waypoints("1.5"));  // the repeated point's segment gets the floor, as before
+  const CliRun ok = geaware("fly --quiet --scenario ok.yaml");
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;
 }
 
 }  // namespace
