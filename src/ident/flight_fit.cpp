@@ -159,6 +159,13 @@ DragFit fitDrag(const FlightLog& log, double mass_kg, const DragFitOptions& opti
   if (out.bands.empty()) {
     throw IdentError(log.source + ": cannot fit the drag table: no height band could be fitted");
   }
+  if (out.bands.size() == 1 && options.height_bands > 1) {
+    // Said, not silent (issue 16): the table then gives every height the same drag.
+    out.warnings.push_back("the drag table has one row (" + num(out.bands.front().h_min_m) + "–" +
+                           num(out.bands.front().h_max_m) + " m) of the " + std::to_string(options.height_bands) +
+                           " height bands asked: the log's heights do not spread; fly at several heights for "
+                           "a drag that depends on height");
+  }
   return out;
 }
 

@@ -92,4 +92,22 @@ TEST(FlightFit, DragTablePerHeight) {
   EXPECT_EQ(table.heights_m, (std::vector<double>{0.1, 0.2, 0.5, 2.0}));
 }
 
+// A log at one height gives a one-row drag table (the same drag at every height): said in a
+// warning, not silent (issue 16); the table of a log that spreads has no such warning.
+TEST(FlightFit, OneHeightDragTableIsAWarning) {
+  const auto& p = geaware_test::paperParams();
+  geaware::ident::DragFitOptions o;
+  o.height_bands = 4;
+  for (const auto& w : geaware::ident::fitDrag(dragFlights(1), p.mass_kg, o).warnings) {
+    EXPECT_EQ(w.find("one row"), std::string::npos) << w;
+  }
+  auto log = dragFlights(1);
+  for (auto& h : log.h_m) h = 0.3;
+  const auto fit = geaware::ident::fitDrag(log, p.mass_kg, o);
+  ASSERT_EQ(fit.bands.size(), 1u);
+  bool said = false;
+  for (const auto& w : fit.warnings) said = said || w.find("the drag table has one row (0.3–0.3 m) of the 4") == 0;
+  EXPECT_TRUE(said);
+}
+
 }  // namespace
