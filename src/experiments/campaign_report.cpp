@@ -124,7 +124,7 @@ void addTrajectoryPlots(report::Page& page, const CampaignResult& r) {
 void addHoverPlots(report::Page& page, const CampaignResult& r) {
   if (r.hover.empty()) return;
   report::Plot p{fmt::format("Hover descent: angle error E against height (mean over {} seeds; "
-                             "acceleration compensation: model)",
+                             "acceleration side: recommended's)",
                              r.seeds),
                  "true rotor-plane height h [m]", "E [deg]", {}};
   for (std::size_t k = 0; k < r.hover.size(); ++k) {

@@ -132,10 +132,11 @@ std::string tableOneText(const CampaignResult& r) {
 std::string hoverText(const CampaignResult& r) {
   std::string s;
   if (!r.hover.empty()) {
-    s += fmt::format("\nHover descent ({}:…): angle error E between desired and true attitude by "
-                     "true rotor-plane height, deg (mean over {} seed{})\n",
-                     "model", r.seeds, r.seeds == 1 ? "" : "s");
-    s += "  (peaks among the bins every seed visited)\n";
+    s += fmt::format("\nHover descent (acceleration side: recommended's; torque compensation per "
+                     "column): angle error E between desired and true attitude by true rotor-plane "
+                     "height, deg (mean over {} seed{})\n",
+                     r.seeds, r.seeds == 1 ? "" : "s");
+    s += "  (peaks among the bins every seed visited; reported, not checked)\n";
     s += fmt::format("{:>13}", "h [m]");
     for (const auto& c : r.hover) s += fmt::format(" {:>11}", control::toString(c.torque));
     s += "\n";

@@ -16,6 +16,7 @@
 #include "geaware/model/units.hpp"
 #include "geaware/model/vehicle_model.hpp"
 #include "geaware/sim/rotor_aerodynamics.hpp"
+#include "geaware/sim/rotor_turbulence.hpp"
 #include "geaware/sim/terrains.hpp"
 
 namespace geaware::experiments {
@@ -127,7 +128,10 @@ class FlightLoop {
         observer_(vehicle_, observerParamsOf(s.controller)),
         bins_(s.hover_bins),
         telemetry_rpm_(Eigen::Vector4d::Constant(x0_.n_rpm[0])) {  // replaced by the first sample
-    if (s.disturbances.turbulence) {
+    if (s.disturbances.turbulence && s.disturbances.turbulence_params.per_rotor) {
+      plant_.addContribution(std::make_unique<sim::RotorTurbulence>(
+          s.disturbances.turbulence_params, truth_, s.seed));
+    } else if (s.disturbances.turbulence) {
       plant_.addContribution(
           std::make_unique<sim::GroundTurbulence>(s.disturbances.turbulence_params, s.seed));
     }

@@ -80,6 +80,8 @@ double bandMean(const HoverCurve& c, double from_m, double to_m) {
   return w > 0.0 ? sum / w : kNaN;
 }
 
+double hoverNearHighRatio(const HoverCurve& c) { return bandMean(c, 0.1, 0.3) / bandMean(c, 1.0, 1.5); }
+
 double bandMax(const HoverCurve& c, double from_m, double to_m) {
   double m = kNaN;
   for (const auto& b : c.bins) {

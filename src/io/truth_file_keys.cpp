@@ -272,6 +272,15 @@ void disturbanceKeys(std::vector<K>& t) {
                      GW_NUMBER(w.ground_turbulence_params.scale_height_m), "h_s: the intensity halves about here"));
   t.push_back(number("disturbances.ground_turbulence.cutoff_height_m", "m", 0.0, 1e3, kOpen,
                      GW_NUMBER(w.ground_turbulence_params.cutoff_height_m), "h_max: none from here up"));
+  t.push_back(flag("disturbances.ground_turbulence.per_rotor",
+                   [](W& w) -> bool& { return w.ground_turbulence_params.per_rotor; },
+                   "the per-rotor law (docs/world.md §7) instead of σ_F, σ_τ, h_s, h_max"));
+  t.push_back(number("disturbances.ground_turbulence.fluctuation_per_increment", "", 0.0, 10.0, kClosed,
+                     GW_NUMBER(w.ground_turbulence_params.fluctuation_per_increment),
+                     "κ: each rotor's σ_T/T per unit of its in-flight additional-thrust fraction"));
+  t.push_back(number("disturbances.ground_turbulence.rotor_correlation", "", 0.0, 1.0, kClosed,
+                     GW_NUMBER(w.ground_turbulence_params.rotor_correlation),
+                     "ρ: correlation of the four rotors' fluctuations (per-rotor law)"));
   t.push_back(number("disturbances.altitude_unsteadiness.torque_std_Nm", "N·m", 0.0, 10.0, kClosed,
                      GW_NUMBER(w.altitude_unsteadiness_params.torque_std_Nm),
                      "σ_τ about each body axis, at every height (blade imbalance…; 0 and force 0: off)"));

@@ -17,6 +17,8 @@ std::vector<model::FieldError> GroundTurbulenceParams::validate() const {
   c.range("correlation_time_s", correlation_time_s, 0.0, 1e3, kExclusive, "s");
   c.range("scale_height_m", scale_height_m, 0.0, 1e2, kExclusive, "m");
   c.range("cutoff_height_m", cutoff_height_m, 0.0, 1e3, kExclusive, "m");
+  c.range("fluctuation_per_increment", fluctuation_per_increment, 0.0, 10.0, kInclusive, "[-]");
+  c.range("rotor_correlation", rotor_correlation, 0.0, 1.0, kInclusive, "[-]");
   return out;
 }
 

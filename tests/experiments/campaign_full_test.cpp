@@ -53,6 +53,8 @@ TEST(CampaignFull, TheDefaultCampaignShowsThePapersHeadlineRatios) {
     EXPECT_EQ(e->crashes, 0) << "exp " << row;
     EXPECT_EQ(e->guard_active_s, 0.0) << "exp " << row;
   }
+  // The hover experiment's acceleration side (recommended's) finishes every descent.
+  for (const auto& h : r.hover) EXPECT_EQ(h.crashes, 0) << control::toString(h.torque);
   // The budget for the whole default campaign on this 2-core machine.
   EXPECT_LE(r.wall_s, 60.0);
 }

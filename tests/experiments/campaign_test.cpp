@@ -17,6 +17,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -341,6 +342,47 @@ TEST(AcceptanceChecks, AStruckRowIsNotComparableAndNeverPasses) {
   const auto& z = named(checks, "RMSE Z: exp 4 / lowest of exps 1–3 (exp 2)");
   EXPECT_TRUE(z.pass);
   EXPECT_DOUBLE_EQ(z.value, 2.0 / 5.0);
+}
+
+/// A hover curve with E = `near` deg in the bin at 0.2 m and `high` deg in the bin at 1.2 m.
+HoverCurve curve(control::TorqueCompensation torque, double near, double high, int crashes) {
+  HoverCurve c;
+  c.torque = torque;
+  c.seeds = {1, 2, 3};
+  c.crashes = crashes;
+  for (const auto& [lo, e] : {std::pair{0.175, near}, std::pair{1.175, high}}) {
+    HoverBin b;
+    b.h_low_m = lo;
+    b.h_high_m = lo + 0.05;
+    b.samples = 100;
+    b.seeds_visited = 3;
+    b.angle_err_deg = e;
+    c.bins.push_back(b);
+  }
+  return c;
+}
+
+TEST(AcceptanceChecks, HoverComparesModelIndisNearHighRatioWithNonesAndNoPeakHeight) {
+  using enum control::TorqueCompensation;
+  CampaignResult r;
+  // none: 0.6°/0.1° = 6; model + INDI: 0.3°/0.1° = 3 → 0.5 ≤ 0.8.
+  r.hover = {curve(kNone, 0.6, 0.1, 0), curve(kModelIndi, 0.3, 0.1, 0)};
+  auto checks = acceptanceChecks(r);
+  const auto& h = named(checks, "hover: E(0.1–0.3 m)/E(1–1.5 m), model + INDI over none");
+  EXPECT_TRUE(h.pass);
+  EXPECT_DOUBLE_EQ(h.value, 0.5);
+  EXPECT_EQ(h.criterion, "≤ 0.80");
+  for (const auto& c : checks) EXPECT_EQ(c.name.find("peak"), std::string::npos) << c.name;
+  // 17 % below is not 20 % below.
+  r.hover = {curve(kNone, 0.6, 0.1, 0), curve(kModelIndi, 0.5, 0.1, 0)};
+  EXPECT_FALSE(named(acceptanceChecks(r), "hover:").pass);
+  // A struck curve is not comparable: no value, no pass, the strikes named.
+  r.hover = {curve(kNone, 0.6, 0.1, 2), curve(kModelIndi, 0.1, 0.1, 0)};
+  const auto struck = named(acceptanceChecks(r), "hover:");
+  EXPECT_FALSE(struck.pass);
+  EXPECT_TRUE(std::isnan(struck.value));
+  EXPECT_NE(struck.name.find("struck in 2 of 3 flights (none), not comparable"), std::string::npos)
+      << struck.name;
 }
 
 TEST(AcceptanceChecks, TheLowestComparisonRowIsAFinishedOne) {

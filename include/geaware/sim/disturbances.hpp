@@ -19,6 +19,9 @@
 // eddies of a rotor diameter, 0.18 m, carried by recirculating flow at ≈ 1.5 m/s, a fraction
 // of the 4 m/s induced velocity), h_s = 0.15 m (about a rotor diameter: s(0.12) ≈ 0.61,
 // s(0.3) ≈ 0.20, s(1.0) ≈ 0.017), h_max = 2 m. Moderate: the paper's vehicle flies at 0.12 m.
+// These magnitudes are assumed, not measured (the ideal world keeps them). With per_rotor set,
+// the flight loop builds sim::RotorTurbulence instead (rotor_turbulence.hpp, docs/world.md §7):
+// per-rotor thrust fluctuations mapped to the body through the mixer geometry.
 //
 // Unsteadiness at altitude (a Contribution; docs/world.md): what buffets a multirotor
 // wherever it flies — blade imbalance and tracking error, the rotors' own unsteady wakes,
@@ -53,6 +56,14 @@ struct GroundTurbulenceParams {
   double correlation_time_s = 0.02;   ///< τ_c of the Gauss–Markov processes [s]
   double scale_height_m = 0.15;       ///< h_s: intensity falls to about ½ here [m]
   double cutoff_height_m = 2.0;       ///< h_max: no turbulence from here up [m]
+  /// The per-rotor law instead (sim::RotorTurbulence, include/geaware/sim/rotor_turbulence.hpp;
+  /// docs/world.md §7): σ_F, σ_τ, h_s and h_max above are then not used. Default: off.
+  bool per_rotor = false;
+  /// κ of the per-rotor law: σ_T,i/T_i = κ·φ_i(h_i), φ_i the rotor's in-flight additional-thrust
+  /// fraction [-].
+  double fluctuation_per_increment = 0.25;
+  /// ρ of the per-rotor law: correlation of the four rotors' fluctuations, 0 independent [-].
+  double rotor_correlation = 0.0;
 
   [[nodiscard]] std::vector<model::FieldError> validate() const;
 };
