@@ -5,6 +5,8 @@
 
 #include "geaware/experiments/calibration.hpp"
 
+#include <cstdint>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -95,8 +97,20 @@ TEST(CalibrationFlights, TheDragTableComesFromTheFlights) {
   EXPECT_NEAR(d.heights_m[0], 0.12, 0.01);
   EXPECT_NEAR(d.heights_m[1], 2.0, 0.05);
   EXPECT_NE(d.d_x_N_per_mps, file.drag.d_x_N_per_mps);
-  // Less drag near the ground, as the truth's rotor drag q(z) and the paper's flights say.
-  EXPECT_LT(d.d_x_N_per_mps[0], 0.85 * d.d_x_N_per_mps[1]);
+  // Less drag near the ground, as the truth's rotor drag q(z) and the paper's flights say — on
+  // average over calibration seeds: one drag flight's d_x scatters by ±0.03–0.1 N/(m/s) from
+  // seed to seed (as built, seeds 1–4: 0.325/0.366, 0.218/0.480, 0.324/0.330, 0.210/0.236 at
+  // 0.12 m / 2 m), so a single seed's ratio (0.89 for seed 1 since the per-rotor near-ground
+  // turbulence of docs/world.md §7; 0.77 before it) says little.
+  double near = 0.0, high = 0.0;
+  for (std::uint64_t seed : {1, 2, 3, 4}) {
+    CalibrationSweeps sw = CalibrationSweeps::defaults();
+    sw.seed = seed;
+    const auto& q = calibrateController(file, calibrationWorld(asBuilt()), sw).vehicle.drag;
+    near += q.d_x_N_per_mps[0] / 4.0;
+    high += q.d_x_N_per_mps[1] / 4.0;
+  }
+  EXPECT_LT(near, 0.85 * high);
   // The truth's rotor drag 30 % stronger: the identified table moves with it.
   sim::World draggy = asBuilt();
   draggy.truth.aero.drag_x_N_per_mps_per_rpm *= 1.3;
