@@ -17,6 +17,16 @@ using model::kGravity;
 /// term has vanished (F_G(100 m) ≈ 7e-7), finite so the models stay finite.
 constexpr double kFarFromGroundM = 100.0;
 
+/// Plausibility limits of the IMU inputs: the widest full-scale ranges of MEMS IMUs, ±4000 °/s
+/// and ±32 g (TDK ICM-42686-P; the BMI088 of the estimator's noise model reads ±2000 °/s and
+/// ±24 g). A larger value is no measurement: it is refused like a NaN, before it reaches a
+/// filter (a 1e300 rad/s rate kept the ω filter non-finite or huge for seconds). A reference
+/// body rate beyond the gyro's range can be neither measured nor tracked: refused as well.
+constexpr double kMaxRateRadps = 4000.0 * model::kDegToRad;
+constexpr double kMaxSpecificForceMps2 = 32.0 * kGravity;
+/// A measured rotor speed above twice the speed at full throttle is no measurement either.
+constexpr double kMaxRotorSpeedFactor = 2.0;
+
 const ControllerParams& validated(const ControllerParams& p) {
   auto errors = p.validate();
   if (!errors.empty()) throw model::InvalidParameters(std::move(errors));
@@ -69,41 +79,22 @@ Controller::Controller(const model::VehicleModel& vehicle, ControllerParams para
       J_R_kgm2_(vehicle.params().rotor.J_R_kgm2),
       reference_map_(vehicle, referenceTerms(params_)),
       dt_s_(1.0 / params_.rate_hz),
-      w_filter_(params_.filter_cutoff_hz, params_.rate_hz),
-      tau_hat_filter_(params_.filter_cutoff_hz, params_.rate_hz),
-      accel_filter_(params_.filter_cutoff_hz, params_.rate_hz),
-      thrust_vector_filter_(params_.filter_cutoff_hz, params_.rate_hz),
-      last_height_m_(kFarFromGroundM),
-      min_rotor_plane_height_m_(vehicle.params().min_rotor_plane_height_m) {
+      min_rotor_plane_height_m_(vehicle.params().min_rotor_plane_height_m),
+      mem_(params_.filter_cutoff_hz, params_.rate_hz, kFarFromGroundM) {
   if (params_.acceleration == AccelerationCompensation::kNeural && !residual_) {
     throw std::invalid_argument("acceleration compensation 'neural' needs a residual-force model");
   }
 }
 
 void Controller::reset() noexcept {
-  const ControllerParams& p = params_;
-  w_filter_ = model::LowPass2<3>(p.filter_cutoff_hz, p.rate_hz);
-  tau_hat_filter_ = model::LowPass2<3>(p.filter_cutoff_hz, p.rate_hz);
-  accel_filter_ = model::LowPass2<3>(p.filter_cutoff_hz, p.rate_hz);
-  thrust_vector_filter_ = model::LowPass2<3>(p.filter_cutoff_hz, p.rate_hz);
-  have_last_w_ = false;
-  thrust_pi_integral_ = 0.0;
-  last_height_m_ = kFarFromGroundM;
-  have_last_n_ = false;
-  have_ground_ = false;
-  have_yaw_lag_ = false;
-  yaw_torque_lagged_Nm_ = 0.0;
-  dob_residual_mps2_.setZero();
-  have_dob_residual_ = false;
-  position_integral_ms_.setZero();
-  last_flags_ = kFlagNone;
+  mem_ = Memory(params_.filter_cutoff_hz, params_.rate_hz, kFarFromGroundM);
 }
 
 ControllerOutput Controller::fallback(std::uint32_t flags) const noexcept {
   ControllerOutput out;
   out.flags = flags;
-  out.height_used_m = last_height_m_;
-  out.thrust_des_N = mass_kg_ * kGravity / (1.0 + ground_effect_.thrustRatio(last_height_m_));
+  out.height_used_m = mem_.last_height_m_;
+  out.thrust_des_N = mass_kg_ * kGravity / (1.0 + ground_effect_.thrustRatio(mem_.last_height_m_));
   const double n = std::sqrt(out.thrust_des_N / (4.0 * k_T_N_per_rpm2_));
   out.n_des_rpm.setConstant(n);
   out.throttle.fill(throttle_curve_.throttle(n));
@@ -112,12 +103,28 @@ ControllerOutput Controller::fallback(std::uint32_t flags) const noexcept {
 
 namespace {
 
-/// Nothing non-finite may reach the motors.
-bool finiteInputs(const ControllerInput& in) noexcept {
+/// Nothing non-finite may reach the motors, nor an IMU or rotor-speed value no sensor reports.
+bool finiteInputs(const ControllerInput& in, double max_rotor_speed_rpm) noexcept {
   const double q_norm = in.estimate.q_WB.norm();
   return in.reference.allFinite() && in.estimate.p_W.allFinite() && in.estimate.v_W.allFinite() &&
          in.estimate.q_WB.coeffs().allFinite() && q_norm > 0.5 && in.gyro_B.allFinite() &&
-         in.accel_B.allFinite() && in.rotor_speeds_rpm.allFinite();
+         in.accel_B.allFinite() && in.rotor_speeds_rpm.allFinite() &&
+         in.gyro_B.cwiseAbs().maxCoeff() <= kMaxRateRadps &&
+         in.accel_B.cwiseAbs().maxCoeff() <= kMaxSpecificForceMps2 &&
+         in.rotor_speeds_rpm.cwiseAbs().maxCoeff() <= max_rotor_speed_rpm;
+}
+
+/// Whether every command and intermediate of an update is finite (the guard's −∞ excepted).
+bool outputFinite(const ControllerOutput& out) noexcept {
+  bool ok = std::isfinite(out.thrust_des_N) && std::isfinite(out.yaw_torque_allocated_Nm) &&
+            std::isfinite(out.height_used_m) && std::isfinite(out.z_cmd_m) &&
+            !std::isnan(out.guard_min_accel_z_mps2) && out.a_des_W.allFinite() &&
+            out.q_des_WB.coeffs().allFinite() && out.attitude_error.allFinite() &&
+            out.w_des_B.allFinite() && out.w_dot_des_B.allFinite() && out.tau_des_B.allFinite() &&
+            out.tau_hat_B.allFinite() && out.n_des_rpm.allFinite() && out.a_dob_W.allFinite() &&
+            out.a_int_W.allFinite();
+  for (double t : out.throttle) ok = ok && std::isfinite(t);
+  return ok;
 }
 
 }  // namespace
@@ -126,9 +133,9 @@ double Controller::modelHeight(const ControllerInput& in, std::uint32_t& flags) 
   // A height that is missing, non-finite or negative keeps the last valid one, and with it the
   // ground elevation under the vehicle, z_g = ẑ − h (the surface the ranger sees).
   if (in.height_valid && std::isfinite(in.height_m) && in.height_m >= 0.0) {
-    last_height_m_ = std::min(in.height_m, kFarFromGroundM);
-    ground_z_m_ = in.estimate.p_W.z() - in.height_m;
-    have_ground_ = true;
+    mem_.last_height_m_ = std::min(in.height_m, kFarFromGroundM);
+    mem_.ground_z_m_ = in.estimate.p_W.z() - in.height_m;
+    mem_.have_ground_ = true;
   } else {
     flags |= kFlagHeightInvalid;
   }
@@ -136,9 +143,9 @@ double Controller::modelHeight(const ControllerInput& in, std::uint32_t& flags) 
   // ground (the paper: "the predicted external force under the desired state"), so they stay a
   // feed-forward. At the measured height the slope of F_G(h) would act as height feedback that
   // cancels the position gain close to the ground (docs/controller.md).
-  double h = last_height_m_;
-  if (params_.ground_effect_height == GroundEffectHeight::kReference && have_ground_) {
-    h = std::clamp(in.reference.p_W.z() - ground_z_m_, 0.0, kFarFromGroundM);
+  double h = mem_.last_height_m_;
+  if (params_.ground_effect_height == GroundEffectHeight::kReference && mem_.have_ground_) {
+    h = std::clamp(in.reference.p_W.z() - mem_.ground_z_m_, 0.0, kFarFromGroundM);
   }
   return h;
 }
@@ -146,24 +153,24 @@ double Controller::modelHeight(const ControllerInput& in, std::uint32_t& flags) 
 Controller::Measured Controller::measure(const ControllerInput& in,
                                          const Eigen::Matrix3d& R) noexcept {
   Measured m;
-  m.w_f = w_filter_.update(in.gyro_B);
-  m.w_dot_f = have_last_w_ ? Eigen::Vector3d((m.w_f - last_w_f_) / dt_s_) : Eigen::Vector3d::Zero();
-  last_w_f_ = m.w_f;
-  have_last_w_ = true;
+  m.w_f = mem_.w_filter_.update(in.gyro_B);
+  m.w_dot_f = mem_.have_last_w_ ? Eigen::Vector3d((m.w_f - mem_.last_w_f_) / dt_s_) : Eigen::Vector3d::Zero();
+  mem_.last_w_f_ = m.w_f;
+  mem_.have_last_w_ = true;
   m.n_sq_rpm2 = in.rotor_speeds_rpm.cwiseAbs2();
   const Eigen::Vector4d wrench_meas = mixer_.wrench(m.n_sq_rpm2);
   Eigen::Vector3d tau_meas = wrench_meas.tail<3>();
-  if (params_.compensate_rotor_inertia && have_last_n_) {
+  if (params_.compensate_rotor_inertia && mem_.have_last_n_) {
     // Reaction torque of the accelerating rotors, J_R·ṅ (ṅ in rad/s²), with the mixer's spins.
-    const Eigen::Vector4d n_dot = (in.rotor_speeds_rpm - last_n_meas_rpm_) / dt_s_;
+    const Eigen::Vector4d n_dot = (in.rotor_speeds_rpm - mem_.last_n_meas_rpm_) / dt_s_;
     tau_meas.z() += J_R_kgm2_ * model::kRpmToRadPerSec * model::Mixer::yawSigns().dot(n_dot);
   }
-  last_n_meas_rpm_ = in.rotor_speeds_rpm;
-  have_last_n_ = true;
-  m.tau_hat = tau_hat_filter_.update(tau_meas);
+  mem_.last_n_meas_rpm_ = in.rotor_speeds_rpm;
+  mem_.have_last_n_ = true;
+  m.tau_hat = mem_.tau_hat_filter_.update(tau_meas);
   const Eigen::Vector3d a_meas_W = R * in.accel_B - Eigen::Vector3d(0.0, 0.0, kGravity);
-  m.a_f = accel_filter_.update(a_meas_W);
-  m.f_f = thrust_vector_filter_.update(wrench_meas(0) / mass_kg_ * R.col(2));
+  m.a_f = mem_.accel_filter_.update(a_meas_W);
+  m.f_f = mem_.thrust_vector_filter_.update(wrench_meas(0) / mass_kg_ * R.col(2));
   return m;
 }
 
@@ -176,7 +183,7 @@ Eigen::Vector3d Controller::disturbanceResidual(const ControllerInput& in, doubl
     // is a disturbance like any other) and the rotor drag at the estimated velocity. The rest is
     // fed forward. The model's own dependence on the state (F_G's slope in h, D·v) stays in the
     // loop as the physical spring and damping it is (docs/controller.md).
-    const double h = last_height_m_;
+    const double h = mem_.last_height_m_;
     const bool model = params_.acceleration == AccelerationCompensation::kModel;
     const Eigen::Vector2d d = model ? drag_.coefficients(h) : drag_.highAltitudeCoefficients();
     Eigen::Vector3d explained = model::RotorDragModel::force_W(R, in.estimate.v_W, d) / mass_kg_;
@@ -186,26 +193,26 @@ Eigen::Vector3d Controller::disturbanceResidual(const ControllerInput& in, doubl
     // First-order low-pass, backward Euler: τ_d·ḋ = raw − d; like every filter of the
     // controller (model::LowPass2) it starts in steady state at its first input, so a mismatch
     // present from take-over on is cancelled at once instead of being flown into for τ_d.
-    if (!have_dob_residual_) {
-      dob_residual_mps2_ = raw;
-      have_dob_residual_ = true;
+    if (!mem_.have_dob_residual_) {
+      mem_.dob_residual_mps2_ = raw;
+      mem_.have_dob_residual_ = true;
     }
-    dob_residual_mps2_ += dt_s_ / (params_.dob_time_constant_s + dt_s_) * (raw - dob_residual_mps2_);
+    mem_.dob_residual_mps2_ += dt_s_ / (params_.dob_time_constant_s + dt_s_) * (raw - mem_.dob_residual_mps2_);
   }
-  return dob_residual_mps2_;
+  return mem_.dob_residual_mps2_;
 }
 
 Eigen::Vector3d Controller::integralTerm(const Eigen::Vector3d& e_p, std::uint32_t& flags) noexcept {
   if (!params_.k_i_per_s3.any()) return Eigen::Vector3d::Zero();
   // Conditional integration: while last tick's command was cut (tilt or thrust; the guard for
   // z), the integral may shrink but not grow. And |K^I·∫e_p| ≤ integral_limit per axis.
-  const bool cut_xy = (last_flags_ & (kFlagTiltLimited | kFlagThrustSaturated)) != 0;
-  const bool cut_z = (last_flags_ & (kFlagThrustSaturated | kFlagClearanceGuard)) != 0;
+  const bool cut_xy = (mem_.last_flags_ & (kFlagTiltLimited | kFlagThrustSaturated)) != 0;
+  const bool cut_z = (mem_.last_flags_ & (kFlagThrustSaturated | kFlagClearanceGuard)) != 0;
   Eigen::Vector3d a_int = Eigen::Vector3d::Zero();
   for (int i = 0; i < 3; ++i) {
     const double k_i = params_.k_i_per_s3[i];
     if (k_i <= 0.0) continue;
-    double& I = position_integral_ms_[i];
+    double& I = mem_.position_integral_ms_[i];
     const double next = I + e_p[i] * dt_s_;
     if ((i < 2 ? cut_xy : cut_z) && std::abs(next) > std::abs(I)) {
       flags |= kFlagIntegralHeld;
@@ -223,7 +230,7 @@ Controller::Additions Controller::additions(const ControllerInput& in, double th
                                             const Eigen::Matrix3d& R, std::uint32_t& flags) noexcept {
   Additions x;
   x.reference = in.reference;
-  if (params_.clearance_guard && have_ground_) {
+  if (params_.clearance_guard && mem_.have_ground_) {
     // The floor: the landing gear's rotor-plane height plus the margin above the ground the
     // ranger sees. The reference is raised to it (no descent through it), and while sinking the
     // vertical command is bounded below by the braking barrier
@@ -231,7 +238,7 @@ Controller::Additions Controller::additions(const ControllerInput& in, double th
     // stops above the floor): ψ̇ ≥ −γ·ψ when a_z ≥ (|ḣ| − γ·ψ)/(t_r + |ḣ|/a_b), at most a_b
     // (docs/controller.md, "The clearance guard").
     const double h_min = min_rotor_plane_height_m_ + params_.guard_margin_m;
-    const double z_floor = ground_z_m_ + h_min;
+    const double z_floor = mem_.ground_z_m_ + h_min;
     if (x.reference.p_W.z() < z_floor) {
       x.reference.p_W.z() = z_floor;
       x.reference.v_W.z() = std::max(x.reference.v_W.z(), 0.0);
@@ -242,7 +249,7 @@ Controller::Additions Controller::additions(const ControllerInput& in, double th
     if (v < 0.0) {
       const double a_b = params_.guard_brake_mps2;
       const double t_r = params_.guard_reaction_time_s;
-      const double psi = (in.estimate.p_W.z() - ground_z_m_ - h_min) + v * t_r - v * v / (2.0 * a_b);
+      const double psi = (in.estimate.p_W.z() - mem_.ground_z_m_ - h_min) + v * t_r - v * v / (2.0 * a_b);
       x.a_z_min = std::min((-v - params_.guard_rate_per_s * psi) / (t_r - v / a_b), a_b);
     }
   }
@@ -268,7 +275,7 @@ Eigen::Vector3d Controller::thrustVectorCommand(const ControllerInput& in,
   // forward at the reference's height, but acts at the measured one.
   const double a_gap = params_.acceleration == AccelerationCompensation::kModel
                            ? ref.thrust_N / mass_kg_ * z_B.z() *
-                                 (ground_effect_.thrustRatio(last_height_m_) - ground_effect_.thrustRatio(h))
+                                 (ground_effect_.thrustRatio(mem_.last_height_m_) - ground_effect_.thrustRatio(h))
                            : 0.0;
   if (a_des.z() + a_gap < x.a_z_min) {
     a_des.z() = x.a_z_min - a_gap;  // the clearance guard
@@ -326,12 +333,18 @@ double Controller::allocatedYawTorque(const ControllerInput& in, double tau_z) n
   if (!(params_.compensate_rotor_inertia && J_R_kgm2_ > 0.0)) return tau_z;
   const double n_mean = std::max(in.rotor_speeds_rpm.mean(), throttle_curve_.minSpeedRpm());
   const double tau_r = J_R_kgm2_ * model::kRpmToRadPerSec / (2.0 * k_I_Nm_per_rpm2_ * n_mean);
-  if (!have_yaw_lag_) {
-    yaw_torque_lagged_Nm_ = tau_z;
-    have_yaw_lag_ = true;
+  if (!mem_.have_yaw_lag_) {
+    mem_.yaw_torque_lagged_Nm_ = tau_z;
+    mem_.have_yaw_lag_ = true;
   }
-  yaw_torque_lagged_Nm_ += dt_s_ / (tau_r + dt_s_) * (tau_z - yaw_torque_lagged_Nm_);
-  return yaw_torque_lagged_Nm_;
+  mem_.yaw_torque_lagged_Nm_ += dt_s_ / (tau_r + dt_s_) * (tau_z - mem_.yaw_torque_lagged_Nm_);
+  // Never beyond the largest yaw torque the rotors make (two at n_max, two at n_min; the
+  // allocation cuts any command beyond it): a 1e298 N·m command from a garbage reference kept the
+  // lag, and with it the yaw command, saturated for minutes.
+  const double n_max = throttle_curve_.maxSpeedRpm(), n_min = throttle_curve_.minSpeedRpm();
+  const double tau_z_max = 2.0 * k_I_Nm_per_rpm2_ * (n_max * n_max - n_min * n_min);
+  mem_.yaw_torque_lagged_Nm_ = std::clamp(mem_.yaw_torque_lagged_Nm_, -tau_z_max, tau_z_max);
+  return mem_.yaw_torque_lagged_Nm_;
 }
 
 double Controller::thrustCorrection(const Eigen::Vector4d& n_sq_des,
@@ -339,21 +352,38 @@ double Controller::thrustCorrection(const Eigen::Vector4d& n_sq_des,
   // T_a^E = (Σk_T·n_des² − Σk_T·n²)/m (docs/paper-facts.md).
   const double thrust_acc_error = k_T_N_per_rpm2_ * (n_sq_des.sum() - n_sq_meas.sum()) / mass_kg_;
   const double i_limit = params_.thrust_pi_ki > 0.0 ? params_.thrust_pi_limit / params_.thrust_pi_ki : 0.0;
-  thrust_pi_integral_ = std::clamp(thrust_pi_integral_ + thrust_acc_error * dt_s_, -i_limit, i_limit);
+  mem_.thrust_pi_integral_ = std::clamp(mem_.thrust_pi_integral_ + thrust_acc_error * dt_s_, -i_limit, i_limit);
   return std::clamp(params_.thrust_pi_kp * thrust_acc_error +
-                        params_.thrust_pi_ki * thrust_pi_integral_,
+                        params_.thrust_pi_ki * mem_.thrust_pi_integral_,
                     -params_.thrust_pi_limit, params_.thrust_pi_limit);
 }
 
 ControllerOutput Controller::update(const ControllerInput& in) noexcept {
-  // 0. Guard the inputs; the height the models are evaluated at.
-  if (!finiteInputs(in)) return fallback(kFlagNonFiniteInput);
+  // 0. Guard the inputs. Finite inputs can still be so large (1e300 m, 1e200 rpm) that the
+  //    arithmetic overflows: a tick whose commands are not all finite is undone (filters,
+  //    integrators and the last height as before it) and gives the hover fallback.
+  if (!finiteInputs(in, kMaxRotorSpeedFactor * throttle_curve_.maxSpeedRpm())) {
+    return fallback(kFlagNonFiniteInput);
+  }
+  const Memory before = mem_;
+  ControllerOutput out = step(in);
+  if (!outputFinite(out)) {
+    mem_ = before;
+    return fallback(kFlagNonFiniteInput);
+  }
+  return out;
+}
+
+ControllerOutput Controller::step(const ControllerInput& in) noexcept {
+  // The height the models are evaluated at.
   std::uint32_t flags = kFlagNone;
   const double h = modelHeight(in, flags);
 
   // 1. Reference from the flat map at that height; the filtered measurements.
   const flatness::FlatState ref = reference_map_.evaluate(in.reference, h);
-  if (!ref.ok()) return fallback(flags | kFlagReferenceInvalid);
+  if (!ref.ok() || !(ref.w_B.cwiseAbs().maxCoeff() <= kMaxRateRadps)) {
+    return fallback(flags | kFlagReferenceInvalid);
+  }
   const Eigen::Quaterniond q_est = in.estimate.q_WB.normalized();
   const Eigen::Matrix3d R = q_est.toRotationMatrix();
   const Measured m = measure(in, R);
@@ -414,7 +444,7 @@ ControllerOutput Controller::update(const ControllerInput& in) noexcept {
   out.guard_min_accel_z_mps2 = x.a_z_min;
   out.z_cmd_m = x.reference.p_W.z();
   out.flags = flags;
-  last_flags_ = flags;
+  mem_.last_flags_ = flags;
   return out;
 }
 

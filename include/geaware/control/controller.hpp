@@ -68,7 +68,9 @@ struct ControllerInput {
 /// Conditions met during an update (bit flags).
 enum ControllerFlag : std::uint32_t {
   kFlagNone = 0,
-  kFlagNonFiniteInput = 1u << 0,     ///< a NaN/∞ in the estimate, IMU or reference: hover output
+  /// A NaN/∞ in the estimate, IMU or reference, an IMU or rotor-speed value beyond any sensor's
+  /// range, or inputs so large that the commands overflowed: hover output, state unchanged.
+  kFlagNonFiniteInput = 1u << 0,
   kFlagHeightInvalid = 1u << 1,      ///< height missing or implausible: last valid height used
   kFlagReferenceInvalid = 1u << 2,   ///< the flat map refused the reference
   kFlagTiltLimited = 1u << 3,        ///< commanded tilt clipped to max_tilt_rad
@@ -123,6 +125,9 @@ class Controller {
   /// Throttles that hold a level hover at the last valid height: the safe output for a tick
   /// whose inputs cannot be trusted.
   [[nodiscard]] ControllerOutput fallback(std::uint32_t flags) const noexcept;
+
+  /// update() on finite inputs; its result may be non-finite when they are huge.
+  [[nodiscard]] ControllerOutput step(const ControllerInput& in) noexcept;
 
   /// The filtered measurements of one tick (update(), step 1).
   struct Measured {
@@ -182,31 +187,43 @@ class Controller {
   flatness::FlatMap reference_map_;
   double dt_s_;
 
-  // Filters in step (one type, one cut-off): ω (differentiated for ω̇_f) with τ̂_B, and the
-  // measured acceleration with the rotor-speed thrust vector for translational INDI.
-  model::LowPass2<3> w_filter_;
-  model::LowPass2<3> tau_hat_filter_;
-  model::LowPass2<3> accel_filter_;
-  model::LowPass2<3> thrust_vector_filter_;
-  Eigen::Vector3d last_w_f_ = Eigen::Vector3d::Zero();
-  bool have_last_w_ = false;
-  double thrust_pi_integral_ = 0.0;
-  double last_height_m_;
-  double ground_z_m_ = 0.0;  // ground elevation under the vehicle from the last valid height [m]
-  bool have_ground_ = false;
-  // Rotor-inertia yaw torque J_R·ṅ: the previous measured speeds (for ṅ) and the lag that
-  // cancels its lead in the yaw command (see update(), step 5).
-  Eigen::Vector4d last_n_meas_rpm_ = Eigen::Vector4d::Zero();
-  bool have_last_n_ = false;
-  double yaw_torque_lagged_Nm_ = 0.0;
-  bool have_yaw_lag_ = false;
-  // geaware's additions: the landing gear's rotor-plane height, the low-passed DOB residual, the
-  // position integral and the previous tick's flags (anti-windup).
+  /// The landing gear's rotor-plane height [m].
   double min_rotor_plane_height_m_;
-  Eigen::Vector3d dob_residual_mps2_ = Eigen::Vector3d::Zero();
-  bool have_dob_residual_ = false;
-  Eigen::Vector3d position_integral_ms_ = Eigen::Vector3d::Zero();  // ∫e_p dt [m·s]
-  std::uint32_t last_flags_ = kFlagNone;
+
+  /// Everything update() changes from tick to tick (fixed size, no allocation). A tick whose
+  /// commands come out non-finite (inputs finite but so large that the arithmetic overflows)
+  /// restores it, so garbage never stays in a filter or integrator.
+  struct Memory {
+    Memory(double cutoff_hz, double rate_hz, double height_m) noexcept
+        : w_filter_(cutoff_hz, rate_hz), tau_hat_filter_(cutoff_hz, rate_hz),
+          accel_filter_(cutoff_hz, rate_hz), thrust_vector_filter_(cutoff_hz, rate_hz),
+          last_height_m_(height_m) {}
+    // Filters in step (one type, one cut-off): ω (differentiated for ω̇_f) with τ̂_B, and the
+    // measured acceleration with the rotor-speed thrust vector for translational INDI.
+    model::LowPass2<3> w_filter_;
+    model::LowPass2<3> tau_hat_filter_;
+    model::LowPass2<3> accel_filter_;
+    model::LowPass2<3> thrust_vector_filter_;
+    Eigen::Vector3d last_w_f_ = Eigen::Vector3d::Zero();
+    bool have_last_w_ = false;
+    double thrust_pi_integral_ = 0.0;
+    double last_height_m_;
+    double ground_z_m_ = 0.0;  // ground elevation under the vehicle from the last valid height [m]
+    bool have_ground_ = false;
+    // Rotor-inertia yaw torque J_R·ṅ: the previous measured speeds (for ṅ) and the lag that
+    // cancels its lead in the yaw command (see update(), step 5).
+    Eigen::Vector4d last_n_meas_rpm_ = Eigen::Vector4d::Zero();
+    bool have_last_n_ = false;
+    double yaw_torque_lagged_Nm_ = 0.0;
+    bool have_yaw_lag_ = false;
+    // geaware's additions: the low-passed DOB residual, the position integral and the previous
+    // tick's flags (anti-windup).
+    Eigen::Vector3d dob_residual_mps2_ = Eigen::Vector3d::Zero();
+    bool have_dob_residual_ = false;
+    Eigen::Vector3d position_integral_ms_ = Eigen::Vector3d::Zero();  // ∫e_p dt [m·s]
+    std::uint32_t last_flags_ = kFlagNone;
+  };
+  Memory mem_;
 };
 
 }  // namespace geaware::control
