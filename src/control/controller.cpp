@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "geaware/control/allocation.hpp"
+#include "geaware/model/imu_limits.hpp"
 #include "geaware/model/rotation.hpp"
 #include "geaware/model/units.hpp"
 
@@ -17,14 +18,11 @@ using model::kGravity;
 /// term has vanished (F_G(100 m) ≈ 7e-7), finite so the models stay finite.
 constexpr double kFarFromGroundM = 100.0;
 
-/// Plausibility limits of the IMU inputs: the widest full-scale ranges of MEMS IMUs, ±4000 °/s
-/// and ±32 g (TDK ICM-42686-P; the BMI088 of the estimator's noise model reads ±2000 °/s and
-/// ±24 g). A larger value is no measurement: it is refused like a NaN, before it reaches a
-/// filter (a 1e300 rad/s rate kept the ω filter non-finite or huge for seconds). A reference
-/// body rate beyond the gyro's range can be neither measured nor tracked: refused as well.
-constexpr double kMaxRateRadps = 4000.0 * model::kDegToRad;
-constexpr double kMaxSpecificForceMps2 = 32.0 * kGravity;
-/// A measured rotor speed above twice the speed at full throttle is no measurement either.
+/// A reference body rate beyond the gyro's full scale (model/imu_limits.hpp) can be neither
+/// measured nor tracked: refused like a reference the flat map refuses.
+constexpr double kMaxRateRadps = model::kImuMaxRateRadps;
+/// A measured rotor speed above twice the speed at full throttle is no measurement: refused like
+/// a NaN, as IMU values beyond the full scales of model/imu_limits.hpp.
 constexpr double kMaxRotorSpeedFactor = 2.0;
 
 const ControllerParams& validated(const ControllerParams& p) {
@@ -107,10 +105,8 @@ namespace {
 bool finiteInputs(const ControllerInput& in, double max_rotor_speed_rpm) noexcept {
   const double q_norm = in.estimate.q_WB.norm();
   return in.reference.allFinite() && in.estimate.p_W.allFinite() && in.estimate.v_W.allFinite() &&
-         in.estimate.q_WB.coeffs().allFinite() && q_norm > 0.5 && in.gyro_B.allFinite() &&
-         in.accel_B.allFinite() && in.rotor_speeds_rpm.allFinite() &&
-         in.gyro_B.cwiseAbs().maxCoeff() <= kMaxRateRadps &&
-         in.accel_B.cwiseAbs().maxCoeff() <= kMaxSpecificForceMps2 &&
+         in.estimate.q_WB.coeffs().allFinite() && q_norm > 0.5 &&
+         model::plausibleImu(in.gyro_B, in.accel_B) && in.rotor_speeds_rpm.allFinite() &&
          in.rotor_speeds_rpm.cwiseAbs().maxCoeff() <= max_rotor_speed_rpm;
 }
 

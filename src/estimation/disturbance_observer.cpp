@@ -4,6 +4,7 @@
 #include <string>
 
 #include "geaware/model/field_check.hpp"
+#include "geaware/model/imu_limits.hpp"
 #include "geaware/model/units.hpp"
 #include "geaware/model/vehicle_model.hpp"
 
@@ -43,25 +44,54 @@ void DisturbanceObserver::reset() noexcept {
   last_ = DisturbanceEstimate{};
   status_ = ObserverStatus::kWarmingUp;
   rejected_ = 0;
+  time_rejections_ = 0;
 }
+
+namespace {
+
+bool estimateFinite(const DisturbanceEstimate& d) noexcept {
+  return std::isfinite(d.t_s) && d.a_ext_W.allFinite() && d.a_ext_B.allFinite() &&
+         d.tau_ext_B.allFinite() && std::isfinite(d.thrust_f_N) && d.tau_B_f.allFinite() &&
+         d.w_f_B.allFinite() && d.w_dot_f_B.allFinite() && std::isfinite(d.f_g_ratio);
+}
+
+}  // namespace
 
 DisturbanceEstimate DisturbanceObserver::update(const DisturbanceObserverInput& in) noexcept {
   const double qn = in.q_WB.norm();
-  if (!(std::isfinite(in.t_s) && in.gyro_B.allFinite() && in.accel_B.allFinite() &&
-        in.rotor_speeds_rpm.allFinite() && in.q_WB.coeffs().allFinite() && qn > 0.5 && qn < 2.0)) {
+  const auto refuse = [this](ObserverStatus status) {
     ++rejected_;
-    status_ = ObserverStatus::kNonFinite;
+    status_ = status;
     DisturbanceEstimate out = last_;
     out.valid = false;
     return out;
+  };
+  // IMU values beyond any sensor's range are refused like NaN (model/imu_limits.hpp).
+  if (!(std::isfinite(in.t_s) && model::plausibleImu(in.gyro_B, in.accel_B) &&
+        in.rotor_speeds_rpm.allFinite() && in.q_WB.coeffs().allFinite() && qn > 0.5 && qn < 2.0)) {
+    return refuse(ObserverStatus::kNonFinite);
   }
   if (have_prev_ && !(in.t_s > t_prev_)) {
-    ++rejected_;
-    status_ = ObserverStatus::kTimeNotIncreasing;
-    DisturbanceEstimate out = last_;
-    out.valid = false;
-    return out;
+    // A garbage time far ahead would refuse every later sample: after kMaxTimeRejections in a
+    // row the observer assumes its own time is wrong and warms up again from this sample.
+    if (++time_rejections_ < kMaxTimeRejections) return refuse(ObserverStatus::kTimeNotIncreasing);
+    const std::uint64_t rejected = rejected_ + 1;
+    reset();
+    rejected_ = rejected;
   }
+  time_rejections_ = 0;
+  // Inputs finite but huge (1e200 rpm) can overflow: such a sample leaves the observer as it was
+  // (a copy of fixed-size members, no allocation).
+  const DisturbanceObserver saved = *this;
+  DisturbanceEstimate out = step(in);
+  if (!estimateFinite(out)) {
+    *this = saved;
+    return refuse(ObserverStatus::kNonFinite);
+  }
+  return out;
+}
+
+DisturbanceEstimate DisturbanceObserver::step(const DisturbanceObserverInput& in) noexcept {
 
   // 1. Thrust and body torque from the measured rotor speeds through the mixer (paper eq. 2).
   const Eigen::Vector4d wrench = mixer_.wrench(in.rotor_speeds_rpm.cwiseAbs2());

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "geaware/model/field_check.hpp"
+#include "geaware/model/imu_limits.hpp"
 #include "geaware/model/rotation.hpp"
 #include "geaware/model/vehicle_model.hpp"
 
@@ -31,6 +32,10 @@ Mat3 skew(const Vec3& w) {
 }
 
 bool finite(const Vec3& v) { return v.allFinite(); }
+bool finite(const EskfState& x, const Cov& P) {
+  return x.p_W.allFinite() && x.v_W.allFinite() && x.q_WB.coeffs().allFinite() &&
+         x.accel_bias_B.allFinite() && x.gyro_bias_B.allFinite() && P.allFinite();
+}
 
 /// M ← F·M for the error-state transition of one IMU interval (Solà eq. 269), using its block
 /// structure: F = I except F_pv = I·dt, F_vθ = A, F_vba = B, F_θθ = C, F_θbg = −I·dt.
@@ -44,64 +49,6 @@ void applyTransition(Cov& M, double dt, const Mat3& A, const Mat3& B, const Mat3
 
 }  // namespace
 
-const char* toString(EskfStatus s) noexcept {
-  switch (s) {
-    case EskfStatus::kOk:
-      return "ok";
-    case EskfStatus::kNotInitialised:
-      return "not initialised";
-    case EskfStatus::kInitialised:
-      return "initialised";
-    case EskfStatus::kNonFinite:
-      return "non-finite sample";
-    case EskfStatus::kTimeNotIncreasing:
-      return "time not increasing";
-    case EskfStatus::kTooOld:
-      return "too old";
-    case EskfStatus::kDeferred:
-      return "deferred";
-    case EskfStatus::kGateRejected:
-      return "gate rejected";
-    case EskfStatus::kQueueFull:
-      return "deferred queue full";
-  }
-  return "?";
-}
-
-std::vector<model::FieldError> EskfParams::validate() const {
-  std::vector<model::FieldError> e;
-  model::FieldChecker c(e);
-  c.positive("eskf.imu_rate_hz", imu_rate_hz);
-  c.positive("eskf.accel_noise_density", accel_noise_density);
-  c.positive("eskf.gyro_noise_density", gyro_noise_density);
-  c.positive("eskf.accel_bias_random_walk", accel_bias_random_walk);
-  c.positive("eskf.gyro_bias_random_walk", gyro_bias_random_walk);
-  c.positive("eskf.mocap_position_std_m", mocap_position_std_m);
-  c.positive("eskf.mocap_attitude_std_rad", mocap_attitude_std_rad);
-  c.positive("eskf.init_position_std_m", init_position_std_m);
-  c.positive("eskf.init_velocity_std_mps", init_velocity_std_mps);
-  c.positive("eskf.init_attitude_std_rad", init_attitude_std_rad);
-  c.positive("eskf.init_accel_bias_std_mps2", init_accel_bias_std_mps2);
-  c.positive("eskf.init_gyro_bias_std_radps", init_gyro_bias_std_radps);
-  c.positive("eskf.gate_chi2", gate_chi2);
-  c.positive("eskf.max_imu_gap_s", max_imu_gap_s);
-  c.positive("eskf.gravity_mps2", gravity_mps2);
-  if (max_consecutive_rejections < 0) {
-    c.fail("eskf.max_consecutive_rejections", std::to_string(max_consecutive_rejections),
-           "an integer ≥ 0 (0 disables the recovery)");
-  }
-  // The history must reach back over the largest latency, with a margin of two samples for the
-  // interpolation and for jitter.
-  const double reach_s = (Eskf::kHistory - 2) / imu_rate_hz;
-  if (!(std::isfinite(max_mocap_latency_s) && max_mocap_latency_s >= 0.0 &&
-        max_mocap_latency_s <= reach_s)) {
-    c.fail(
-        "eskf.max_mocap_latency_s", model::formatValue(max_mocap_latency_s),
-        "a number in [0, " + model::formatValue(reach_s) + "] (the history buffer at imu_rate_hz)");
-  }
-  return e;
-}
-
 Eskf::Eskf(EskfParams params)
     : params_(params), last_fused_t_s_(-std::numeric_limits<double>::infinity()) {
   if (auto errors = params_.validate(); !errors.empty())
@@ -114,7 +61,7 @@ void Eskf::reset() noexcept {
   deferred_count_ = 0;
   initialised_ = false;
   last_fused_t_s_ = -std::numeric_limits<double>::infinity();
-  consecutive_rejections_ = 0;
+  consecutive_rejections_ = time_rejections_ = 0;
   last_chi2_ = 0.0;
   counters_ = EskfCounters{};
   have_imu_ = false;
@@ -245,7 +192,7 @@ bool Eskf::update(EskfState& x, Cov& P, const model::MocapSample& m, bool gated)
 }
 
 EskfStatus Eskf::addImu(const model::ImuSample& imu) noexcept {
-  if (!(std::isfinite(imu.t_s) && finite(imu.gyro_B) && finite(imu.accel_B))) {
+  if (!(std::isfinite(imu.t_s) && model::plausibleImu(imu.gyro_B, imu.accel_B))) {
     ++counters_.imu_non_finite;
     return EskfStatus::kNonFinite;
   }
@@ -260,10 +207,15 @@ EskfStatus Eskf::addImu(const model::ImuSample& imu) noexcept {
   }
   const Entry& prev = at(0);
   const double dt = imu.t_s - prev.t_s;
-  if (!(dt > 0.0)) {
+  if (!(dt > 0.0 && dt <= kHistory / params_.imu_rate_hz)) {
     ++counters_.imu_time_rejected;
+    // A garbage time far ahead would refuse every later sample: after kHistory rejections in a
+    // row the filter assumes its own time is wrong and restarts its history at this sample.
+    if (++time_rejections_ < kHistory) return EskfStatus::kTimeNotIncreasing;
+    rebase(imu);
     return EskfStatus::kTimeNotIncreasing;
   }
+  time_rejections_ = 0;
   if (dt > params_.max_imu_gap_s) ++counters_.imu_gaps;
 
   // Write the new entry straight into its ring slot: no temporary copy of P.
@@ -280,6 +232,11 @@ EskfStatus Eskf::addImu(const model::ImuSample& imu) noexcept {
   e.accel_B = imu.accel_B;
   e.has_imu = true;
   propagate(e.x, e.P, w0, a0, imu.gyro_B, imu.accel_B, dt);
+  if (!finite(e.x, e.P)) {  // finite inputs that overflowed: not committed (slot now unused)
+    if (count_ == kHistory) --count_;
+    ++counters_.imu_non_finite;
+    return EskfStatus::kNonFinite;
+  }
   head_ = slot;
   if (count_ < kHistory) ++count_;
   ++counters_.imu_propagated;
@@ -337,6 +294,10 @@ EskfStatus Eskf::addMocap(const model::MocapSample& mocap) noexcept {
     return EskfStatus::kTimeNotIncreasing;
   }
   if (m.t_s > at(0).t_s) {
+    if (m.t_s - at(0).t_s > params_.max_mocap_latency_s) {  // far ahead: would block the queue
+      ++counters_.mocap_out_of_order;
+      return EskfStatus::kTimeNotIncreasing;
+    }
     if (deferred_count_ == kDeferredCapacity) {
       ++counters_.mocap_dropped;
       return EskfStatus::kQueueFull;
@@ -345,6 +306,24 @@ EskfStatus Eskf::addMocap(const model::MocapSample& mocap) noexcept {
     return EskfStatus::kDeferred;
   }
   return fuseNow(m);
+}
+
+void Eskf::rebase(const model::ImuSample& imu) noexcept {
+  Entry e = at(0);
+  e.t_s = imu.t_s;
+  e.gyro_B = imu.gyro_B;
+  e.accel_B = imu.accel_B;
+  e.has_imu = true;
+  reinflate(e.P);
+  head_ = -1;
+  count_ = deferred_count_ = time_rejections_ = 0;
+  last_fused_t_s_ = -std::numeric_limits<double>::infinity();
+  push(e);
+}
+
+void Eskf::restart(EskfState& x, Cov& P) const noexcept {
+  reinflate(P);
+  x.v_W.setZero();  // as suspect as p and θ: at rest, as at initialisation (σ_v re-inflated)
 }
 
 void Eskf::reinflate(Cov& P) const noexcept {
@@ -399,8 +378,13 @@ EskfStatus Eskf::fuseNow(const model::MocapSample& m) noexcept {
   if (!params_.compensate_delay) {
     // The naive filter: the pose is treated as a measurement of the newest state.
     Entry& e = at(0);
-    if (recover) reinflate(e.P);
-    return update(e.x, e.P, m, !recover) ? accepted() : rejected();
+    EskfState x = e.x;
+    Cov P = e.P;
+    if (recover) restart(x, P);
+    if (!update(x, P, m, !recover) || !finite(x, P)) return rejected();
+    e.x = x;
+    e.P = P;
+    return accepted();
   }
 
   // 1. Newest buffered entry k at or before the capture time.
@@ -429,8 +413,8 @@ EskfStatus Eskf::fuseNow(const model::MocapSample& m) noexcept {
   }
 
   // 3. Gated update at t_s.
-  if (recover) reinflate(P);
-  if (!update(x, P, m, !recover)) return rejected();
+  if (recover) restart(x, P);
+  if (!update(x, P, m, !recover) || !finite(x, P)) return rejected();
 
   // 4. Re-propagate the stored IMU samples from t_s to now.
   repropagate(k, x, P, w_s, a_s, dt1, m.t_s);

@@ -72,11 +72,18 @@ class DisturbanceObserver {
 
   void reset() noexcept;
 
+  /// After this many non-increasing times in a row the observer assumes its own time is wrong
+  /// (a garbage time far ahead) and warms up again from the next sample [-].
+  static constexpr int kMaxTimeRejections = 64;
+
   [[nodiscard]] ObserverStatus lastStatus() const noexcept { return status_; }
   [[nodiscard]] std::uint64_t rejectedSamples() const noexcept { return rejected_; }
   [[nodiscard]] const DisturbanceObserverParams& params() const noexcept { return params_; }
 
  private:
+  /// update() on accepted inputs; its estimate may be non-finite when they are huge.
+  DisturbanceEstimate step(const DisturbanceObserverInput& in) noexcept;
+
   DisturbanceObserverParams params_;
   double mass_kg_;
   Eigen::Vector3d inertia_kgm2_;
@@ -97,6 +104,7 @@ class DisturbanceObserver {
   DisturbanceEstimate last_;
   ObserverStatus status_ = ObserverStatus::kWarmingUp;
   std::uint64_t rejected_ = 0;
+  int time_rejections_ = 0;
 };
 
 }  // namespace geaware::estimation

@@ -49,8 +49,10 @@ struct EskfParams {
   /// is the χ² quantile with 6 degrees of freedom at p = 0.001 [-].
   double gate_chi2 = 22.458;
   /// After this many consecutive gate rejections the filter assumes it, not the mocap, is wrong:
-  /// the position/attitude covariance is re-inflated to its initial value and the next pose is
-  /// fused without the gate [-]. 0 disables the recovery.
+  /// the position/velocity/attitude covariance is re-inflated to its initial value, the velocity
+  /// restarts at zero (as at initialisation: after garbage IMU data it can be off by hundreds of
+  /// m/s, which no pose corrects through the gate) and the next pose is fused without the gate
+  /// [-]. 0 disables the recovery.
   int max_consecutive_rejections = 25;
   /// Oldest capture time a pose may have, relative to the newest IMU sample [s]; must fit in the
   /// history buffer (kHistory samples at imu_rate_hz).
@@ -80,7 +82,11 @@ enum class EskfStatus : std::uint8_t {
   kNotInitialised,     ///< IMU before the first pose or initialise(): time recorded only
   kInitialised,        ///< this pose initialised the filter
   kNonFinite,          ///< NaN/∞ in the sample (or a zero quaternion): rejected
-  kTimeNotIncreasing,  ///< IMU time ≤ the previous one, or a pose older than the last fused
+  /// IMU time ≤ the previous one or more than kHistory samples after it; a pose older than the
+  /// last fused or captured over max_mocap_latency_s after the newest IMU sample. After kHistory
+  /// IMU rejections in a row the filter restarts its history at the rejected sample (p, v, θ
+  /// covariance re-inflated): a garbage time far ahead cannot stop it for good.
+  kTimeNotIncreasing,
   kTooOld,             ///< pose captured before the oldest buffered IMU sample
   kDeferred,           ///< pose captured after the newest IMU sample: fused when the IMU passes it
   kGateRejected,       ///< innovation failed the χ² gate
@@ -171,6 +177,10 @@ class Eskf {
   [[nodiscard]] Cov initialCovariance() const noexcept;
   /// Forgets what the filter believed about p, v and θ (and their correlations).
   void reinflate(Cov& P) const noexcept;
+  /// The gate recovery: reinflate(P) and the velocity back to zero.
+  void restart(EskfState& x, Cov& P) const noexcept;
+  /// Restarts the history at `imu`'s time from the newest state (see kTimeNotIncreasing).
+  void rebase(const model::ImuSample& imu) noexcept;
   /// After an update at entry k's capture time t_s (state x, P; IMU w_s, a_s there, dt1 after
   /// entry k): re-propagates the stored IMU samples from t_s to now, overwriting the buffer.
   void repropagate(int k, const EskfState& x, const Cov& P, const Eigen::Vector3d& w_s,
@@ -188,6 +198,7 @@ class Eskf {
   bool initialised_ = false;
   double last_fused_t_s_;
   int consecutive_rejections_ = 0;
+  int time_rejections_ = 0;  ///< consecutive IMU time rejections
   double last_chi2_ = 0.0;
   EskfCounters counters_;
   // Before initialisation: the newest IMU sample (time and values), so the first pose can
