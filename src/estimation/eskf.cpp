@@ -321,9 +321,13 @@ void Eskf::rebase(const model::ImuSample& imu) noexcept {
   push(e);
 }
 
-void Eskf::restart(EskfState& x, Cov& P) const noexcept {
+void Eskf::restart(EskfState& x, Cov& P, const model::MocapSample& m) const noexcept {
+  // As at initialisation: p and q from the pose, at rest. A Kalman step from a state 1e300 m off
+  // lost the pose to cancellation and never came back.
   reinflate(P);
-  x.v_W.setZero();  // as suspect as p and θ: at rest, as at initialisation (σ_v re-inflated)
+  x.p_W = m.p_W;
+  x.q_WB = m.q_WB;
+  x.v_W.setZero();
 }
 
 void Eskf::reinflate(Cov& P) const noexcept {
@@ -380,7 +384,7 @@ EskfStatus Eskf::fuseNow(const model::MocapSample& m) noexcept {
     Entry& e = at(0);
     EskfState x = e.x;
     Cov P = e.P;
-    if (recover) restart(x, P);
+    if (recover) restart(x, P, m);
     if (!update(x, P, m, !recover) || !finite(x, P)) return rejected();
     e.x = x;
     e.P = P;
@@ -413,7 +417,7 @@ EskfStatus Eskf::fuseNow(const model::MocapSample& m) noexcept {
   }
 
   // 3. Gated update at t_s.
-  if (recover) restart(x, P);
+  if (recover) restart(x, P, m);
   if (!update(x, P, m, !recover) || !finite(x, P)) return rejected();
 
   // 4. Re-propagate the stored IMU samples from t_s to now.

@@ -49,10 +49,10 @@ struct EskfParams {
   /// is the χ² quantile with 6 degrees of freedom at p = 0.001 [-].
   double gate_chi2 = 22.458;
   /// After this many consecutive gate rejections the filter assumes it, not the mocap, is wrong:
-  /// the position/velocity/attitude covariance is re-inflated to its initial value, the velocity
-  /// restarts at zero (as at initialisation: after garbage IMU data it can be off by hundreds of
-  /// m/s, which no pose corrects through the gate) and the next pose is fused without the gate
-  /// [-]. 0 disables the recovery.
+  /// it restarts as at initialisation from the next pose (position and attitude from the pose,
+  /// velocity zero; after garbage it can be 1e300 m or hundreds of m/s off, which no Kalman step
+  /// corrects) with the position/velocity/attitude covariance re-inflated to its initial value,
+  /// and fuses that pose without the gate [-]. 0 disables the recovery.
   int max_consecutive_rejections = 25;
   /// Oldest capture time a pose may have, relative to the newest IMU sample [s]; must fit in the
   /// history buffer (kHistory samples at imu_rate_hz).
@@ -177,8 +177,8 @@ class Eskf {
   [[nodiscard]] Cov initialCovariance() const noexcept;
   /// Forgets what the filter believed about p, v and θ (and their correlations).
   void reinflate(Cov& P) const noexcept;
-  /// The gate recovery: reinflate(P) and the velocity back to zero.
-  void restart(EskfState& x, Cov& P) const noexcept;
+  /// The gate recovery: reinflate(P), p and q from the pose `m` (normalised), v back to zero.
+  void restart(EskfState& x, Cov& P, const model::MocapSample& m) const noexcept;
   /// Restarts the history at `imu`'s time from the newest state (see kTimeNotIncreasing).
   void rebase(const model::ImuSample& imu) noexcept;
   /// After an update at entry k's capture time t_s (state x, P; IMU w_s, a_s there, dt1 after
