@@ -78,6 +78,7 @@ Controller::Controller(const model::VehicleModel& vehicle, ControllerParams para
       reference_map_(vehicle, referenceTerms(params_)),
       dt_s_(1.0 / params_.rate_hz),
       min_rotor_plane_height_m_(vehicle.params().min_rotor_plane_height_m),
+      arm_m_(0.5 * vehicle.params().diagonal_rotor_distance_m),
       mem_(params_.filter_cutoff_hz, params_.rate_hz, kFarFromGroundM) {
   if (params_.acceleration == AccelerationCompensation::kNeural && !residual_) {
     throw std::invalid_argument("acceleration compensation 'neural' needs a residual-force model");
@@ -233,7 +234,10 @@ Controller::Additions Controller::additions(const ControllerInput& in, double th
     // ψ = (h − h_min) − |ḣ|·t_r − ḣ²/(2·a_b) ≥ 0 (after a reaction time t_r, braking at a_b
     // stops above the floor): ψ̇ ≥ −γ·ψ when a_z ≥ (|ḣ| − γ·ψ)/(t_r + |ḣ|/a_b), at most a_b
     // (docs/controller.md, "The clearance guard").
-    const double h_min = min_rotor_plane_height_m_ + params_.guard_margin_m;
+    // A tilt θ lowers a landing foot by up to arm·sin θ below the level gear height (every
+    // point of the airframe lies within the rotor arm of the centre).
+    const double sin_tilt = std::sqrt(std::max(0.0, 1.0 - R(2, 2) * R(2, 2)));
+    const double h_min = min_rotor_plane_height_m_ + params_.guard_margin_m + arm_m_ * sin_tilt;
     const double z_floor = mem_.ground_z_m_ + h_min;
     if (x.reference.p_W.z() < z_floor) {
       x.reference.p_W.z() = z_floor;

@@ -213,6 +213,34 @@ TEST(ControllerClearanceGuard, StaysOutOfTheWayOfOrdinaryErrorsAtTheReference) {
   }
 }
 
+TEST(ControllerClearanceGuard, ATiltedVehicleKeepsItsLowestFootAboveTheFloor) {
+  // A tilt θ lowers a foot by up to arm·sin θ (arm = b/2): the floor rises by it. At 0.10 m
+  // sinking at 5 cm/s the level vehicle is left alone (ψ = 1.5 cm); tilted by 8° its lowest
+  // foot is 2.4 cm lower, ψ < 0, and the guard brakes by the barrier's bound for the raised floor.
+  const auto& p = paperVehicle().params();
+  const double tilt = 8.0 * std::acos(-1.0) / 180.0;
+  const double h_min_level = p.min_rotor_plane_height_m + 0.01;
+  const double h_min = h_min_level + 0.5 * p.diagonal_rotor_distance_m * std::sin(tilt);
+  const double h = 0.10, v = -0.05, a_b = 2.0, t_r = 0.05, gamma = 4.0;
+  Controller level = guardOnly();
+  ControllerInput in = hoverInput(h);
+  in.reference.p_W.z() = 0.09;  // between the level and the tilted floor
+  in.estimate.v_W.z() = v;
+  const ControllerOutput out_level = level.update(in);
+  ASSERT_LT(h_min_level, 0.09);
+  EXPECT_NEAR(out_level.z_cmd_m, 0.09, 1e-12);  // level: the reference stands
+  Controller tilted = guardOnly();
+  in.estimate.q_WB = Eigen::Quaterniond(Eigen::AngleAxisd(tilt, Eigen::Vector3d::UnitX()));
+  const ControllerOutput out = tilted.update(in);
+  EXPECT_TRUE(out.flags & kFlagClearanceGuard);
+  EXPECT_NEAR(out.z_cmd_m, h_min, 1e-9);  // the reference raised to the tilted floor
+  const double psi = (h - h_min) + v * t_r - v * v / (2.0 * a_b);
+  ASSERT_LT(psi, 0.0);
+  const double bound = std::min((-v - gamma * psi) / (t_r - v / a_b), a_b);
+  EXPECT_NEAR(out.guard_min_accel_z_mps2, bound, 1e-9);
+  EXPECT_GT(out.guard_min_accel_z_mps2, out_level.guard_min_accel_z_mps2);
+}
+
 TEST(RecommendedConfiguration, IsModelModelIndiWithTheAdditionsAndParsesByName) {
   const ControllerParams r = recommendedControllerParams();
   EXPECT_EQ(r.acceleration, AccelerationCompensation::kModel);

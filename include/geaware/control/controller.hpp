@@ -189,6 +189,8 @@ class Controller {
 
   /// The landing gear's rotor-plane height [m].
   double min_rotor_plane_height_m_;
+  /// Half the diagonal rotor distance: how far a landing foot can be from the centre [m].
+  double arm_m_;
 
   /// Everything update() changes from tick to tick (fixed size, no allocation). A tick whose
   /// commands come out non-finite (inputs finite but so large that the arithmetic overflows)
