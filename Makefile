@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # geaware — the two commands of the README, and their parts.
 #   make demo   install missing packages, build, run the main job on the default vehicle
 #   make test   install missing packages, build, run the whole test suite

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // One full controller update (flat map to throttles) for the paper's configurations.
 // Issue target: ≤ 1 µs median for model/model_indi. Inputs cycle through 1024 samples of the
 // 1 m/s lemniscate at 0.12 m with a perturbed estimate so every branch does real work.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Estimation layer: one ESKF IMU propagation, one delayed mocap update (fused at its capture
 // time and re-propagated to now), and one lattice fit of a 16×16 frame.
 #include <benchmark/benchmark.h>

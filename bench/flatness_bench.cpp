@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Micro-benchmarks of the flat map (issue target: full map with ground-effect terms, to rotor
 // speeds, ≤ 150 ns median). Inputs are 1024 precomputed samples of the paper's 3 m/s
 // lemniscate, so trajectory evaluation is not part of the measurement.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Benchmarks of the closed-loop flight runner (experiments/flight.hpp), 60 s of simulated time
 // at the plant's 1 kHz with every sensor (IMU 200 Hz, motion capture 100 Hz, rotor telemetry
 // 200 Hz, 16×16 lattice ranger at 100 Hz) over flat ground, the log streamed to a temporary

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Throughput of identification: 10⁶ quadrotor-platform samples (half level board with mixing
 // experiments, half tilted board) parsed from CSV and fitted. Target (issue 5): parse + fit in
 // ≤ 3 s. The log is generated once, in the temporary directory, from the controller-side model

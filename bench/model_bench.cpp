@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Micro-benchmarks of the controller-side model functions. Inputs vary per iteration (a sweep
 // over heights) so the compiler cannot hoist the work out of the loop.
 #include <Eigen/Geometry>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Neural-Lander residual network: one predict_W (the controller calls it neural_iterations
 // times per update) and one training epoch. Inputs cycle through 1024 samples of the synthetic
 // ground-effect residual below (as in tests/neural), so the ReLU pattern varies as in flight.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Micro-benchmarks of the simulated sensors (issue 3, "Performance"): one 16×16 lattice-ranger
 // frame over flat ground and over a height map, one sample of each other sensor, and one
 // SensorSuite step at the plant rate (what the 1 kHz loop pays on average per step).

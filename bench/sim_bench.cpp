@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Micro-benchmarks of the truth plant (issue 3, "Performance"):
 //  - one plant step: RK4, per-rotor aerodynamics with ground effect, motors/battery, ground-strike
 //    check (target ≤ 0.5 µs median). Arg 1: the default plant (ground-effect factors once per

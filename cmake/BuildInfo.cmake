@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Script mode (cmake -P): writes build_info.cpp from its template with the current git commit.
 # Run at every build by the geaware_build_info target; configure_file rewrites the output only
 # when its text changes, so an unchanged commit rebuilds nothing.

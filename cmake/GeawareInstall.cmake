@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Installing geaware as a CMake package (docs/install.md).
 #
 # Every library is a component of the package `geaware`, named after its layer (model, traj,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # `cpack -G DEB` in the build tree makes a Debian package of the install (docs/install.md): the
 # command line, the static libraries with their headers and CMake package, the vehicle and truth
 # files, plotly.js for the reports, the licence and the notices.

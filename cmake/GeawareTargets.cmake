@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Helpers shared by every geaware target.
 #
 # The wall between layers is enforced by the include path, not by convention: every layer's

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # -DGEAWARE_SANITIZE=address,undefined instruments the whole build (our code and the tests) with
 # the named sanitizers. Every finding stops the program (no recovery), so a test under a
 # sanitizer fails on its first report. Suppressions, if ever needed, live in

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // `geaware bench`: parse the options into experiments::CampaignOptions, run the campaign, print.
 // Thin: the campaign, its text, JSON and report live in the experiments layer.
 

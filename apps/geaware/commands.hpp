@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Subcommands of the geaware CLI. Each registers its options on the app and returns the
 // function that runs it; the work itself lives in the libraries. One convention for all:

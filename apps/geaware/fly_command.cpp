@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // `geaware fly`: parse the options into an experiments::FlightScenario, fly it, print the
 // Table I metrics. Thin: the loop, the metrics, the log, the summary and the report live in the
 // experiments layer.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // `geaware identify`: rig and flight logs → parameters with standard errors, a merged vehicle
 // file (--out), one JSON object (--json) and an HTML report (--report). Thin: parse, read the
 // log, call the ident library (ident/identify.hpp), print and write.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // geaware command line: parse, call a library function, print. Errors end in one line per
 // problem on stderr and a non-zero exit status (1: bad input or failure, 2: bad usage).
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // `geaware model`: the controller-side ground-effect model per height (experiments/model_table).
 
 #include <cstdio>

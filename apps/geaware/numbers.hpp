@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The one number parser of the command line: every numeric option is checked on its text,
 // before CLI11 converts it, by one of these validators. The text must be a whole number

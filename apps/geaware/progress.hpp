@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The command line's progress reporter: one line on stderr that rewrites itself, at most ten
 // times a second; stage messages on lines of their own. Silent when stderr is not a terminal

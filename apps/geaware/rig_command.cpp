@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // `geaware rig platform|rotor|calibrate`: the virtual test rigs (sim/rigs.hpp) writing CSV
 // logs like the paper's rigs, and the calibration of the truth aerodynamics against the paper's
 // measurements (docs/paper-facts.md).

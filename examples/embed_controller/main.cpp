@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The controller in someone else's program: build it from a vehicle file (argument) or from
 // values, give it a state estimate, the IMU, the height and the rotor speeds, get throttles.
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // geaware's simulator from user code: the paper's quadrotor as built (a truth file, or the
 // built-in one) flies the 0.12 m, 1 m/s lemniscate with the recommended controller; an observer
 // sees every control tick, the result has the tracking error and any ground strike.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /* geaware's controller for firmware and other languages: a C99 interface (docs/c-api.md).
  *
  * The shape a PX4 module, an ArduPilot library or a Crazyflie out-of-tree controller calls:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The C interface (include/geaware/c_api.h, docs/c-api.md): a thin shell over control::Controller
 // and estimation::DisturbanceObserver. Every exception stops here; update() is noexcept and
 // allocation-free like the controller it calls.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geaware/estimation/disturbance_observer.hpp"
 
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The ESKF's parameter checks and status names (kept apart from the filter's arithmetic).
 #include <cmath>
 #include <string>

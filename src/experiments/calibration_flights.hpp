@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The calibration's flights in the world (experiments/calibration.hpp, steps 7 and 8): a hover
 // out of ground effect for k_T in flight, and the drag flights at two heights for D(h). Each is

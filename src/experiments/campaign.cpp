@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geaware/experiments/campaign.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geaware/experiments/campaign_report.hpp"
 
 #include "geaware/experiments/flight_plots.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The campaign's summary: the text of `geaware bench` and its JSON document (docs/results.md),
 // apart from the run (campaign.cpp) so that the run can change without touching its outputs.
 #include "geaware/experiments/campaign_summary.hpp"

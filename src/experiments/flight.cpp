@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The closed-loop flight runner: see flight.hpp for the order of the stages and
 // docs/closed-loop.md for the choices made here.
 #include "geaware/experiments/flight.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Helpers shared by the flight runner (flight.cpp) and the scenario validation
 // (scenario_validation.cpp); not part of the public API.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geaware/experiments/identify_report.hpp"
 
 namespace geaware::experiments {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The robustness suite's cells and its run (experiments/robustness.hpp, docs/robustness.md).
 // The comparisons, checks, text and JSON are in robustness_summary.cpp, the page in
 // robustness_report.cpp.

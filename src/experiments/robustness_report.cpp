@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The robustness suite's report page (experiments/robustness.hpp): the checks, then per
 // height/speed a heat map of strikes and one of all-RMSE, case × controller.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The robustness suite's paired comparisons, the checks, the text summary and the JSON
 // document (experiments/robustness.hpp, docs/robustness.md).
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Validation of a flight scenario before it is flown: every stage's parameters, the rates, and
 // the trajectory's feasibility for the nominal vehicle (flight.hpp, validate()).
 #include <Eigen/Core>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geaware/experiments/table_one.hpp"
 
 #include <cmath>

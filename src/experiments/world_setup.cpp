@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geaware/experiments/world_setup.hpp"
 
 #include "geaware/io/truth_file.hpp"

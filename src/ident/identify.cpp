@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Identification results of the single-rotor stand, flights, hover descents and the platform's
 // correlation table (the platform's own: identify_platform.cpp), and their text form.
 

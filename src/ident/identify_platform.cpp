@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Identification result of the quadrotor platform: k_T and F_G from the level board, the mixing
 // coefficients from the rpm differences, M_G from the tilted board, in the paper's closed forms
 // or as tables; the height-band table and the F_G and M_G plots.

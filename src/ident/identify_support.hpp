@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Internal to identify*.cpp: the pieces every kind of identification result is built from
 // (plot curves, the parameter and residual tables).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geaware/ident/rig_logs.hpp"
 
 #include <array>

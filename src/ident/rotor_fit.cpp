@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geaware/ident/rotor_fit.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The built-in truth files (config/truths/*.yaml), embedded at build time by
 // src/io/CMakeLists.txt into the generated builtin_truths.cpp. Private to geaware_truth_file.

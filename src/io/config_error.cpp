@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geaware/io/config_error.hpp"
 
 namespace geaware::io {

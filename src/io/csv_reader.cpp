@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geaware/io/csv_reader.hpp"
 
 #include "geaware/io/input_file.hpp"

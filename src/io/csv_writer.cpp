@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geaware/io/csv_writer.hpp"
 
 #include "geaware/io/output_file.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The height-map file (docs/scenario-file.md): a regular grid of heights as CSV with a
 // '#'-comment header, read into a model::HeightGrid that sim::HeightMap is built from.
 #include "geaware/io/height_map_file.hpp"

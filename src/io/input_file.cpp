@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geaware/io/input_file.hpp"
 
 #include <fstream>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geaware/io/json.hpp"
 
 #include "geaware/io/output_file.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geaware/io/output_file.hpp"
 
 #include <sys/stat.h>

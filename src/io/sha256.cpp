@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // SHA-256 (FIPS 180-4), for the hashes of input files in every result's provenance.
 #include <array>
 #include <cstdint>

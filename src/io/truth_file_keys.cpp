@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The `truth:` section's keys (io/truth_file.hpp): one row per key, with its unit, range,
 // meaning and place in sim::World. docs/truth-file.md lists this table (checked by a test);
 // the reader, the writer and the range checks all work from it.

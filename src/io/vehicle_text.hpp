@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Internal to the io layer: the line-level text surgery of the vehicle-file writer
 // (include/geaware/io/vehicle_writer.hpp). Values are replaced where yaml-cpp says they are,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geaware/io/yaml_reader.hpp"
 
 #include "text.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geaware/model/field_check.hpp"
 
 #include <cmath>

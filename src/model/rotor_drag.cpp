@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geaware/model/rotor_drag.hpp"
 
 #include <Eigen/Geometry>

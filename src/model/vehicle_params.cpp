@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geaware/model/vehicle_params.hpp"
 
 #include "geaware/model/field_check.hpp"

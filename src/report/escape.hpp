@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Text escaping for the HTML writer: element content and attribute values, and JSON text
 // that is embedded inside a <script> element.

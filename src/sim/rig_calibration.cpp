@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The calibration of the truth aerodynamics against the paper's measurements (`geaware rig
 // calibrate`, docs/sim-aerodynamics.md): the noiseless virtual platform probed at the paper's
 // heights, tilts and speeds, one group of checks per measurement.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The paper's virtual test rigs and the calibration of the truth aerodynamics against the
 // paper's measurements (docs/paper-facts.md). See docs/sim-aerodynamics.md.
 

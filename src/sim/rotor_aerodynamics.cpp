@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Truth-side per-rotor aerodynamics. The physical model, its sources and the calibration are in
 // docs/sim-aerodynamics.md; the numbered steps of compute() follow its section "Per step".
 // Nothing here reads the controller's ground-effect model (model/ground_effect.hpp).

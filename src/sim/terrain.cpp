@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The terrains: the generic ray cast of Terrain and the concrete shapes of terrains.hpp.
 #include "geaware/sim/terrain.hpp"
 #include "geaware/sim/terrains.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geaware/traj/hover_descent.hpp"
 
 #include "param_text.hpp"

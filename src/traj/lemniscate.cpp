@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geaware/traj/lemniscate.hpp"
 
 #include "param_text.hpp"

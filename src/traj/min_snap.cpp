@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geaware/traj/min_snap.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Private to traj/: how the trajectory parameters' validate() words a bad value, and the range
 // tests they share.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """The kinds of issue 16's sweep of careless and hostile inputs, re-run on every command.
 
 Usage: hostile_inputs_test.py GEAWARE_BINARY SOURCE_DIR

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Every command of the geaware binary with `--json -`: standard output must be one JSON
 // document and nothing else (human text goes to stderr), parsed here with nlohmann-json, with
 // the provenance of the run. A vehicle whose name holds quotes and a backslash must come back

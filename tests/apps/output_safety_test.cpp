@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Nothing the user gave is lost (issue 16, item 0): the geaware binary run as a careless user
 // would run it — an output that is one of the inputs (same name, another name, a hard link, a
 // symlink, a file a scenario names), two outputs on one file, directories, devices and FIFOs as

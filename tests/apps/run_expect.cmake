@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Runs one command and checks its exit code and output; used by the CLI tests (CMakeLists.txt).
 #
 #   cmake -DEXPECT_EXIT=<code> [checks...] -P run_expect.cmake -- <program> [args...]

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Runs two commands that each write a file and fails unless the files are the same, line for
 # line, apart from comment lines (`#`: the provenance, which names the command line). Arguments
 # (-D): FIRST, SECOND: the commands ('|'-separated words); FIRST_FILE, SECOND_FILE: their outputs.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The C interface's update allocates nothing (c_api.h promises it): counted with the test
 // allocation counter over a second of hover and garbage inputs, after creation.
 #include <gtest/gtest.h>

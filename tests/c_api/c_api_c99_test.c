@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /* The C interface used from C99 (include/geaware/c_api.h): creation from values and from a
  * file, a hover that settles on the closed-form hover throttle, garbage inputs that never reach
  * the motors, and every refusal with its status and message. Exit 0 when all checks hold. */

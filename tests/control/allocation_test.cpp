@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The control allocation: exact inversion inside the range, and the priorities (thrust, then
 // roll/pitch, then yaw) when the wrench does not fit.
 #include "geaware/control/allocation.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // geaware's additions to the paper's controller (docs/controller.md): the disturbance observer's
 // residual fed forward, the position integral with anti-windup, the clearance guard, and the
 // `recommended` configuration's name. Closed forms on the controller alone.

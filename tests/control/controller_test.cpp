@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The controller on closed-form cases: hover equilibrium, feedback directions, attitude error,
 // incremental-inversion algebra, allocation saturation, and guarded inputs.
 #include "geaware/control/controller.hpp"

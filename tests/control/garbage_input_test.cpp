@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The controller fed garbage (issue 16 item 3): 10⁵ seeded updates of random inputs laced with
 // NaN, ±∞, huge and denormal values, zero and non-unit quaternions and non-increasing times,
 // mixed with valid stretches, for every configuration the C++ API offers except neural (the

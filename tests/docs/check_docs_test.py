@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """scripts/check-docs must catch a wrong number: it is run on temporary documents whose blocks
 are the real output of a geaware command, then with one digit changed, and so on.
 Usage: check_docs_test.py CHECKER GEAWARE"""

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """The README's command-line synopses name every option that `geaware … --help` lists.
 Usage: readme_synopses_test.py README.md GEAWARE"""
 import re

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The paper's external disturbance observer (eq. 6) and its flight estimate of F_G. Inputs
 // are generated from analytic rotational motion through the vehicle's own mixer, so
 // "consistent data" means: rotor speeds that produce exactly the torque the motion needs.

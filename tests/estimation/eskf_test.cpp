@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Error-state Kalman filter with delayed motion capture. No simulator here: the truth is a
 // smooth analytic motion (sinusoidal position and ZYX Euler angles) whose specific force and
 // body rates are exact, sampled by a seeded IMU (white noise + constant biases) and a seeded

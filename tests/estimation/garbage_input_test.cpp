@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The estimators fed garbage (issue 16 item 3): 10⁵ seeded calls each of Eskf::addImu/addMocap,
 // LatticeHeightEstimator::estimate and DisturbanceObserver::update with NaN, ±∞, huge, denormal
 // and random values, bad frame sizes, zero and non-unit quaternions and non-increasing times,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Lattice-ranger height and ground normal. Frames are ray-cast here against analytic terrain
 // (a plane; a table edge with its vertical face), so the expected height is exact.
 #include "geaware/estimation/lattice_height.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The lattice estimator's steps alone: the regularised plane fit, inlier marking, the zone-patch
 // support rule, the RANSAC hypothesis and the surface under a point.
 #include "geaware/estimation/lattice_steps.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The campaign's calibration as a real team would do it (experiments/calibration.hpp; issue 10
 // item 2): the belief's mass is the scale's seeded reading of the truth's, its inertia the CAD's,
 // its k_T the hover flight's, its drag table the drag flights'; the truth reaches the belief only

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The full default campaign — what `geaware bench` runs with no options: calibration on the
 // virtual rigs, the Neural-Lander baseline, the eight Table I experiments and geaware's two
 // `recommended` rows over 5 seeds and the hover experiment — with the issue's acceptance checks (issue 6, "What it must show").

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The campaign's report page (experiments/campaign_report.hpp) in Debian's headless Chromium:
 // the page is written from disk (no server, no network) and plotly must have drawn every plot.
 // Labelled `browser`; skipped, with the reason, where Chromium is not installed.

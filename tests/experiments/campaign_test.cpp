@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The campaign of issue 6 (`geaware bench`, experiments/campaign.hpp) on a reduced scale, so
 // that the file runs in a few seconds: one seed, experiments 1 and 5 at their full length, a
 // short hover descent. The full default campaign and its acceptance ratios are

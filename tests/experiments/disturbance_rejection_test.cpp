@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The disturbance observer in the flight loop (paper eq. 6, estimation::DisturbanceObserver) and
 // the controller that uses it: what the observer measures in closed loop against a truth that is
 // not the controller's vehicle.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The closed-loop flight runner (issue 4, "Closed loop"): the acceptance flights, determinism,
 // ground strikes, validation, the log, and no allocation inside the loop.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The robustness suite (experiments/robustness.hpp) on a small scale: each cell changes exactly
 // its truth field and nothing of the belief; the run is identical on 1 and 2 threads; a law
 // family re-runs the calibration in its own world; the JSON parses with nulls where every flight

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Scenario files: the committed examples load into the scenario they describe; every kind of
 // bad file is rejected with the file, the line and the key.
 #include "geaware/experiments/scenario_file.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Scenario validation: every offending field named, an impossible trajectory refused before
 // flying.
 #include "geaware/experiments/flight.hpp"

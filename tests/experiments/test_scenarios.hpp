@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Flight scenarios shared by the experiments tests: the paper's lemniscate on the built-in vehicle.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Differential flatness with ground effect: closed-form hover cases, reduction to the plain
 // drag-aware map, finite-difference checks of ω and ω̇, and the oracle test — the map's inputs
 // integrated through the model it inverts reproduce the trajectory.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Spearman rank correlation with ties (paper eq. 4), and the supplementary table's signs on a
 // synthetic platform log.
 

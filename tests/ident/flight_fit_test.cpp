@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Flight logs: F_G from a hover descent (paper eq. 10) and the drag table D(h).
 
 #include "geaware/ident/flight_fit.hpp"

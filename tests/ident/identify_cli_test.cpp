@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // `geaware identify … --json -` and `geaware rig calibrate --json -` as a user runs them: the
 // standard output must be ONE JSON document (the text tables go to stderr then), parsed here
 // with nlohmann-json, carrying the numbers and the provenance.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The identification API (ident/identify.hpp) end to end: logs of the virtual rigs (sim/rigs.hpp)
 // and synthetic flight logs → one call per kind → parameters, update, plots; checked against
 // the truth that made the logs and against the fits called directly.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The shared solvers: least-squares estimates with honest standard errors, and a robust scheme
 // that ignores gross outliers.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Quadrotor platform, tilted board: the leveling-torque shape (g3, g4) and scale.
 
 #include "geaware/ident/leveling_fit.hpp"

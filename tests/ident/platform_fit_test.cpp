@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Quadrotor platform, level board: k_T with F_G's g1, g2, and the mixing coefficients per
 // height band, from synthetic logs of the controller-side model.
 

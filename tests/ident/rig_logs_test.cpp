@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The rig-log readers on top of the CSV reader: units checked by range, configurable column
 // names, and a synthetic platform log read back through a file.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Single-rotor stand: k_T, k_I, J_R and the throttle curve from a synthetic sweep.
 
 #include "geaware/ident/rotor_fit.hpp"

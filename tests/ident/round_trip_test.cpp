@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Round trip against the simulator (issue 5, "What it must show"): logs of the virtual rigs
 // (sim/rigs.hpp) → the identification fits → curves compared with the truth's own curves.
 //

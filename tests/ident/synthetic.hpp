@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Synthetic rig and flight logs for the identification tests, generated exactly from the
 // controller-side model (model::Mixer, model::GroundEffectModel, model::ThrottleCurve,

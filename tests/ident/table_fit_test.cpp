@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Ground-effect curves identified as tables (ident/table_fit.hpp): synthetic logs generated
 // from a vehicle whose F_G and M_G ARE tables give back the knot values within their reported
 // standard errors, the standard errors are honest, the sparse solver agrees with the dense one,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Fits as vehicle-file updates: the keys each fit determines are set, and the merged file
 // carries values close to the parameters the synthetic log was generated with.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # cmake -DBUILD_DIR=… -DSOURCE_DIR=… -DWORK_DIR=… -DGENERATOR=… -DCXX_COMPILER=… -DCPACK=…
 #       -DVERSION=… -P run_examples.cmake   (tests/install/CMakeLists.txt)
 cmake_minimum_required(VERSION 3.22)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The streaming CSV reader: values come back in the requested order, and every kind of bad
 // log is an error naming the file, the line and the column.
 

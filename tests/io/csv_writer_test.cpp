@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The CSV writer: shortest round-trip numbers that the CSV reader reads back exactly, float32
 // cells, buffering across many rows, streams it does not own, and write errors.
 #include "geaware/io/csv_writer.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The height-map file: a grid read with its header keys, and every kind of bad file an error
 // naming the file, the line and the column.
 #include "geaware/io/height_map_file.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Reading a whole input file: its bytes, or an error naming the file and what was expected.
 #include "geaware/io/input_file.hpp"
 

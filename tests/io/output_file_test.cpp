@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Output files: checked before work, written whole or not at all, inputs never overwritten.
 #include "geaware/io/output_file.hpp"
 #include "geaware/io/input_file.hpp"

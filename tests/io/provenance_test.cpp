@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // JSON output and provenance: SHA-256 against the FIPS 180-4 examples, the JSON rules every
 // command relies on (NaN as null, escaping, unparsable bytes replaced), checked writes.
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // "FROM:TO:STEP" ranges from the command line (io/range): the values include TO despite
 // floating-point steps, and every malformed text is rejected with a message naming the option.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Truth files (io/truth_file.hpp, docs/truth-file.md): any vehicle file is a truth file whose
 // world is its ideal world; the `truth:` section's keys land where the table says, in the
 // world's units; unknown keys, bad values and versions are errors naming the file, line and

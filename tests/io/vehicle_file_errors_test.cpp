@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Vehicle files with structural problems: missing and unknown keys, wrong types, malformed
 // YAML. Each is rejected naming the key path, its line and what was expected.
 

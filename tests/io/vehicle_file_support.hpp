@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Shared by the vehicle-file tests: bad files are built from the built-in YAML text by replacing
 // exactly one snippet. The replacement helper throws when the snippet does not occur exactly

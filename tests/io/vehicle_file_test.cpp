@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Vehicle files (io/vehicle_file): the built-in vehicle is the committed file and carries the
 // paper's parameters (docs/paper-facts.md, with its caveats resolved as documented in
 // docs/vehicle-file.md), and files on disk load or fail naming the path. Bad files:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Vehicle files with physically invalid values (each problem at the line of its key), ground-
 // effect curves given as tables, and several problems reported together.
 

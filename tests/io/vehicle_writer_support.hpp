@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Shared by the vehicle-file writer's tests: a fixture with a copy of paper_quad.yaml in a fresh
 // directory, an update touching scalars and lists, and text helpers that build table-form bases

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Ground-effect curves written as tables: a formula section becomes a table in place, a table
 // section gets a new table or the formula back, and a failed merge never writes the output.
 

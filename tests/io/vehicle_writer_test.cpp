@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Merging values into a base vehicle file: only the merged keys change, comments and every
 // other key are kept, the result loads, and the base file is never touched. Styles the
 // line-level edit does not handle fall back to re-emitting the whole file.

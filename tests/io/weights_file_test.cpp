@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The weight-file format on its own (io/weights_file.hpp): it round-trips any network shape bit
 // for bit, and its reader checks the format's own consistency (format and version first,
 // dimensions chained from the feature count through the layers) without knowing the network.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The strict MapReader methods (finite numbers, lists with a length, rows, lists of maps,
 // texts, free-form text maps, a word in place of a value): each problem names the key path and
 // its line, and readers keep going so that one run reports everything.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The shared parameter checks: which values each check admits (bounds, NaN, infinity) and the
 // exact text it reports, since loaders, the CLI and other layers' tests quote that text.
 #include "geaware/model/field_check.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Ground-effect model: closed forms of the paper's F_G, M_G and J'(h), and the calibration
 // targets of docs/paper-facts.md.
 #include "geaware/model/ground_effect.hpp"

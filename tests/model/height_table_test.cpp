@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Tabulated ground-effect curves (model::HeightTable and GroundEffectModel with tables): the
 // interpolant passes through the knots, is C¹, never overshoots the data, reproduces the paper's
 // closed forms when sampled from them, and decays as 1/h² above the table.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The filter type of the controller and the disturbance observer: a second-order Butterworth low-pass.
 #include "geaware/model/low_pass.hpp"
 

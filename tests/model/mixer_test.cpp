@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The X-quadrotor mixer of paper eq. 2 and N_base of eq. 4.
 #include "geaware/model/mixer.hpp"
 

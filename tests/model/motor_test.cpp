@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Motor model and the ESC throttle curve (docs/paper-facts.md, supplementary section 3).
 #include "geaware/model/motor.hpp"
 

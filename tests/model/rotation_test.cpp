@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The rotation helpers: Log/Exp maps and the angle between attitudes.
 #include "geaware/model/rotation.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Height-dependent rotor-drag table: interpolation, clamping and the drag force.
 #include "geaware/model/rotor_drag.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Validation of parameter sets (the file-level messages are tested in tests/io/).
 #include "geaware/model/vehicle_params.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The vehicle parameter schema: every accessor reaches its own field (an out-of-range value set
 // through it is reported at its key and nowhere else), merges take exactly the keys named, the
 // visit follows the form a curve is given in, and docs/vehicle-file.md's parameter list is the

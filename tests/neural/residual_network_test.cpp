@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The residual network: feature layout, inference on hand-computed cases, validation, the
 // Lipschitz certificate as a property, and no allocation in predict_W.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Spectral norm: the exact SVD value on closed-form matrices, and the power iteration of
 // spectral normalisation (Miyato et al. 2018) against it.
 

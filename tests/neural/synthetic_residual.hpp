@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A known residual force for the trainer and weight-file tests: the paper vehicle's additional
 // ground-effect thrust along the body z axis plus a linear rotor drag,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Training: the network learns a known residual, spectral normalisation holds the Lipschitz
 // bound (and training without it breaks the bound, so the check can fail), determinism, and
 // validation of options and data.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The weight file: save → load is bit-exact, and every kind of corrupt file is rejected with
 // the file, the line and the key named.
 

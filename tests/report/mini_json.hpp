@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A small strict JSON reader for the report tests: enough to parse the plot data a page embeds
 // and compare it with what went in. Not a general-purpose parser (no \u surrogate pairs beyond

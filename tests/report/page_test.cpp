@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Tests of the HTML writer: the page is self-contained, text is escaped, and the plot data that
 // the page embeds reads back exactly (non-finite values as null). No browser needed; the
 // rendering itself is checked in render_test.cpp.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Browser tests of the report pages: Debian's headless Chromium loads a written page from disk
 // (no server, no network) and plotly must have drawn every plot; PNG export gives a real PNG.
 // Labelled `browser` in CTest; skipped, with the reason, where Chromium is not installed.

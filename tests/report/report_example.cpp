@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The example page of docs/report.md: a small report with a table and two plots, written as
 // HTML and exported to PNG. Regenerates docs/figures/report-example.png:
 //   build/tests/report/report_example /tmp/report-example.html docs/figures/report-example.png

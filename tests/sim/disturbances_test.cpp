@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Disturbances: the turbulence intensity law, turbulence statistics near and far from the
 // ground, its Contribution interface, wind (mean and gusts), determinism, validation.
 #include "geaware/sim/disturbances.hpp"

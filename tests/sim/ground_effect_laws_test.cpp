@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The closed-form ground-effect law families of the truth aerodynamics (GroundEffectLaw;
 // docs/sim-aerodynamics.md, "Other law families"), each against its formula computed here from
 // the rotor geometry: Cheeseman & Bennett 1955 per rotor and Sanchez-Cuevas et al. 2017 per

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The simulated IMU: closed-form readings without noise (rest, tilt, free fall, lever arm),
 // white-noise and bias-walk statistics against the configured densities, rate, validation.
 #include "geaware/sim/imu.hpp"

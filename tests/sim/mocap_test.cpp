@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Simulated motion capture: exact latency, dropout rates (isolated and bursts), pose noise
 // statistics, the bounded delay ring, validation.
 #include "geaware/sim/mocap.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Motors, ESC curve and battery against closed forms.
 #include "geaware/sim/motors.hpp"
 

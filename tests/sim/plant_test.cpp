@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The truth plant: closed-form flights (free fall, hover), the CoG lever arm, ground strikes,
 // input guards, determinism; and the truth parameters (nominal, perturbed, validation).
 #include "geaware/sim/plant.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The simulated lattice ranger against closed forms: flat ground at a known height (centre
 // zones read h/cos, every return lies on the plane), a tilted plane recovered from a frame,
 // max range, grazing rays, noise and outlier statistics, zone order, rate, validation.

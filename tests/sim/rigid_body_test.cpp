@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Closed-form checks of the rigid body and its RK4 integrator.
 #include "geaware/sim/rigid_body.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The virtual rigs: determinism with a seed, noise statistics, sweep layout, the single-rotor
 // stand's closed forms, the mixing experiment of docs/paper-facts.md, and the whole calibration.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Truth aerodynamics: closed-form limits and invariants first, then the calibration targets of
 // issue 3 (docs/paper-facts.md) with the tolerances the issue sets. The paper's numbers appear
 // here only as targets; the truth itself never reads them.

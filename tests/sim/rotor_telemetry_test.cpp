@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Simulated rotor-speed telemetry: rate, noise statistics, quantisation, no negative speeds.
 #include "geaware/sim/rotor_telemetry.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The per-rotor near-ground turbulence (sim::RotorTurbulence, docs/world.md §7): the law's
 // closed forms (σ_T/T = κ·φ_i(h)), the per-rotor → body mapping through the mixer geometry,
 // the statistics of independent and correlated rotors, determinism.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Seeded noise and scheduling shared by the sensors: the normal generator's distribution, the
 // seeding, the fixed-rate clock and the Gauss–Markov process.
 #include "geaware/sim/sampling.hpp"

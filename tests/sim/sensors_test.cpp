@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The sensor suite: every sensor at its own rate in one loop, determinism (same seed →
 // bit-identical samples, another seed → other noise), independence of the noise streams, and
 // validation with prefixed key paths.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Terrains: heights, normals and ray casts against closed forms; the generic march-and-bisect
 // against the closed forms; height-map files and their errors.
 #include "geaware/sim/terrains.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The truth's parameters: built from a nominal vehicle, perturbed from a seed, validated.
 #include "geaware/sim/truth_params.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The as-built world's truth-side effects (docs/world.md), each against a closed form: the k_I
 // spread, tilted thrust axes, the ESC/link dead time, the in-flight cushion scale, translational
 // lift and airframe drag. Each default reproduces the ideal world exactly.

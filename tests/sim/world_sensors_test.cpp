@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The as-built world's sensor and disturbance effects (docs/world.md) against closed forms: the
 // flight controller's low-pass (attenuation, delay, white-noise gain), IMU vibration after the
 // filter, the motion-capture stamp with an unknown latency and its jitter, and the

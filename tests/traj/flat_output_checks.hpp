@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Checks shared by the trajectory tests: analytic derivatives against finite differences of
 // the derivative below, and continuity of p…snap across a joint.

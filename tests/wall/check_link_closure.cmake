@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 cmake_minimum_required(VERSION 3.22)
 # Fails when a target's link closure holds a forbidden library. Arguments (-D):
 #   CLOSURES   "target=lib,lib,...;target=..." computed at configure time (tests/wall)

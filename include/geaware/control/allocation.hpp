@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Control allocation of the X quadrotor (controller step 5): squared rotor speeds
 // N² = M⁻¹·[T; τ_B] inside the rotor-speed range, with priorities when the wrench does not fit.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The ground-effect-aware controller of the paper ("Model-based Controller with Incremental
 // Inversion", SPEC §3), with the acceleration and torque compensation of Table I as two

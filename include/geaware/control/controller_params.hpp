@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Parameters of the ground-effect-aware controller (paper section "Model-based Controller with
 // Incremental Inversion"). Defaults: the paper's gains (docs/paper-facts.md).

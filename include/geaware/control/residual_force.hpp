@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A learned model of the residual (unmodelled) force on the vehicle, for the Neural-Lander
 // baseline (Shi et al. 2019). The controller only sees this interface; the network, its

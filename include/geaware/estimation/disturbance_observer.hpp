@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The external disturbance observer of the paper (eq. 6, "Real-world flight"):
 //   ã_ext = (a − g)_f^imu − z_B·T_f/m,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Error-state Kalman filter fusing the IMU (200 Hz) with delayed motion-capture poses (SPEC §4),
 // after J. Solà, "Quaternion kinematics for the error-state Kalman filter", 2017 (arXiv

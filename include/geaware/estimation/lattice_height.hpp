@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Height of the rotor-plane centre above the ground, and the ground normal, from one frame of
 // the N×N lattice time-of-flight ranger and the attitude estimate (SPEC §4).

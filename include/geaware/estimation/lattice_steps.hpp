@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The steps of LatticeHeightEstimator::estimate (lattice_height.hpp), each a function of its
 // inputs so that each can be tested alone:

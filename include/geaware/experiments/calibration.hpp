@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Step 1 of the campaign (issue 6; issue 10 item 2, "calibrate as a real team would"): the
 // controller's belief built only from what a team measures on the vehicle as it is (the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The paper's experiments in one call (issue 6, `geaware bench`; docs/results.md):
 //   1. calibrate: the virtual rigs on the truth → the controller's identified parameters

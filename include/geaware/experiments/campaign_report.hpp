@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The campaign's report page (issue 6, `geaware bench --report DIR`), through the report
 // module: one self-contained HTML file with Table I beside the paper's numbers, the checks, the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The campaign's summary (`geaware bench`; docs/results.md): the text printed after the run and
 // the JSON document of --json. Built from a CampaignResult only; the run is campaign.hpp.

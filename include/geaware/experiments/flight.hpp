@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // One simulated closed-loop flight (issue 4, "Closed loop"; the data path of
 // ARCHITECTURE.md): the runner owns the clock and the order of every stage.

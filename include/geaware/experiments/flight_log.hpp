@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The flight log: one CSV row per control tick, streamed through io::CsvWriter's fixed buffer
 // (the whole log is never held in memory), with every stage of the data path — reference, estimate, truth,

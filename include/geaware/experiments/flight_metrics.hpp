@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The metrics of a flight as observers of its control ticks (flight.hpp): each reads the tick
 // (reference, estimate, truth) and writes its part of the FlightResult after the loop. The

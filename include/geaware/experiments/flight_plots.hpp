@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Plot builders shared by the single-flight report (`geaware fly --report`) and the campaign's
 // (`geaware bench --report`): the same series (experiments/flight_series.hpp) drawn the same

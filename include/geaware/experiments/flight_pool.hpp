@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Many independent flights on a few threads (the campaign's --jobs). Every flight is a pure
 // function of its scenario (experiments/flight.hpp: same scenario and seed → bit-identical

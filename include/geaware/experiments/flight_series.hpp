@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Time series of one flight for the reports of `fly` and the campaign (trajectory, errors, attitude error,
 // rotor speeds, torques), decimated to keep the page light: one point every `stride` control

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Building a flight from the command line's terms: the trajectory from a few numbers, its
 // one-line description, the Neural-Lander network from a weight file.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The summary of one flight (`geaware fly`): the Table I metrics, the crash, the controller's
 // flags and the speed, as text and as the JSON document of `fly --json`, and the single-flight

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The paper's hover experiment: a slow descending hover from high altitude into ground effect,
 // flown with torque compensation none / model / INDI / model + INDI, and the angle error E

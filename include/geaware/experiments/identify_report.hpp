@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The HTML page of an identification (`geaware identify --report DIR`): the command, the
 // result's tables (parameters, residuals and the kind's own), its plots and warnings.

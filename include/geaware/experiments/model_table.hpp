@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // `geaware model`: the controller-side ground-effect model tabulated over heights (F_G, M_G,
 // J', drag, hover speed) as a text table, CSV or JSON, with the vehicle's parameters.

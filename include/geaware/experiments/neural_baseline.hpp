@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Step 2 of the campaign: the Neural-Lander baseline (Shi et al. 2019; docs/neural-lander.md)
 // trained for the campaign's vehicle. Flights at several heights are flown with a baseline

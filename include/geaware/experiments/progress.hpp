@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Progress of a long run (a flight of many laps, the campaign, the Neural-Lander training),
 // reported through one small interface so that the library says what it is doing and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The virtual rigs run as the paper's rigs (`geaware rig platform|rotor|calibrate`): what a run
 // collects beside its rows, the pages that show it, and the text table of the truth's

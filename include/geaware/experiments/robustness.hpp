@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The robustness suite (issue 10, item 4; `geaware bench --suite robustness`;
 // docs/robustness.md). The controller's belief is calibrated ONCE on the unperturbed world (the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Flight scenario files (YAML): the vehicle the controller believes in, the world it flies in
 // (a truth file, docs/truth-file.md), the trajectory, the controller configuration, the terrain

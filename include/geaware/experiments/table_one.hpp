@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The eight tracking experiments of the paper's Table I (docs/paper-facts.md): controllers,
 // height, peak speed, the lemniscate flown, and the paper's published numbers; and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Tracking metrics of the paper's Table I: RMSE in XOY, in Z and overall, and the maximum and
 // standard deviation of the position-error norm ‖E_P‖, accumulated sample by sample.

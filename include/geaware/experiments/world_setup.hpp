@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Which world a flight or a campaign flies in (sim::World, from a truth file: docs/truth-file.md)
 // and how a flight scenario takes it: the truth, its per-flight variation, the sensors and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Differential flatness with ground effect (paper section "Differential Flatness with Ground
 // Effect", SPEC §2): flat outputs (p, v, a, j, s; ψ, ψ̇, ψ̈) and the rotor-plane height h map to

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Spearman rank correlation (paper eq. 4) and the correlation table of the paper's
 // supplementary material, computed from a quadrotor-platform log.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Every fit of the identification layer (docs/identification.md). Each returns its parameters
 // with standard errors (ident::Estimate), the residual RMS and counts (ident::FitStats), and

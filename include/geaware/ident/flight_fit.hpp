@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Identification from flight logs (formats in ident/rig_logs.hpp):
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Identification as a library (docs/identification.md): one call per kind of log — the
 // single-rotor stand, the quadrotor platform, a flight (drag table), a hover descent (F_G in

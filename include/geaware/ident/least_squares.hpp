@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The two solvers behind every fit of ident/: linear least squares and nonlinear least squares
 // (Ceres), both with the same robust scheme and the same uncertainty (docs/identification.md,

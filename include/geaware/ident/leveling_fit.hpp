@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Leveling torque from the quadrotor platform with a tilted board (paper, section "leveling
 // torque", eq. 14–15): the vehicle stays level, the board below it is tilted by δ about the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Quadrotor-platform identification with a level board (paper, sections "additional thrust"
 // and "mixing matrix under ground effect"):

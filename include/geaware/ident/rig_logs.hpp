@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The logs identification reads (formats in docs/identification.md, "Log formats"): the
 // quadrotor force/torque platform, the single-rotor stand, and flight logs. Each reader keeps

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Single-rotor stand identification (paper, supplementary section 3; eq. 6):
 //   thrust  T = k_T·n²                          linear least squares → k_T

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Ground-effect curves identified as tables (docs/identification.md, "Curves as tables"):
 // instead of the paper's closed forms, the curve's value at each of a set of knot heights.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Identification's fits as a vehicle-file update: each function sets the keys its fit
 // determines, with their standard errors, in an io::VehicleUpdate that io::writeVehicleFile

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Errors in files the user gave us: each names the file, the line, the key and what was
 // expected, so a person can fix the file without reading our code.

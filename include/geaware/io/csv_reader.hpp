@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Streaming CSV reader for rig and flight logs (docs/identification.md, "Log formats").
 //

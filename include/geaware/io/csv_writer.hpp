@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Streaming CSV writer: the one way geaware writes a CSV file (rig logs, the flight log, tables).
 //

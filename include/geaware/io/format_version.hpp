@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The `format_version` key every input file may carry (vehicle, scenario, height-map, weights
 // and config files). A file without it is read as version 1, today's format; a version this

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The height-map file: a regular grid of heights, one CSV row per j (the first row at
 // origin_y) with one value per i, in metres, after a '#' header:

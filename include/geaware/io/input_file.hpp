@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Reading a whole input file (vehicle, truth, scenario, weights) before it is parsed, with the
 // errors every reader gives the same way.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // JSON for every `--json` output, built with nlohmann-json (Debian: nlohmann-json3-dev) and
 // written one way. Keys keep the order in which they are inserted. Non-finite numbers are written

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Output files that never lose what the user gave. Every output path of a command is checked
 // before any long work starts (`OutputChecks`), and every file is written through a temporary

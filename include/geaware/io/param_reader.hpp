@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Reading a parameter struct from YAML by its schema (model/param_schema.hpp): every parameter
 // at its key path, maps opened as the paths go down and closed (unknown keys reported) as they

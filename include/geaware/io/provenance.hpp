@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Where a result came from: every JSON output, flight log and report carries the geaware version
 // and commit it was made by, the command line, the seeds and the SHA-256 of every input file, so

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Parsing of "FROM:TO:STEP" ranges given on the command line (heights, tilts, speeds).
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Truth files (config/truths/*.yaml, docs/truth-file.md): the simulated world as a file. A truth
 // file is a vehicle file (the vehicle-file schema, read by the vehicle reader; any vehicle file

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Vehicle files (config/vehicles/*.yaml): strict YAML loading into model::VehicleParams.
 // Every key is required, unknown keys are errors, and the parameters are validated

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Writing identified parameters into a vehicle file (docs/vehicle-file.md): the fitted values
 // are MERGED into a given base file, every other key stays as it was.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The weight file of a dense residual network (docs/neural-lander.md): a YAML document with the
 // format name and version, the input feature names, the hidden widths, γ (or `none`), the input

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Strict reading of YAML maps, shared by every file loader (vehicle, scenario and weight files):
 // every key read is recorded with its line, keys never read are reported as unknown, and type

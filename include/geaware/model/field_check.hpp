@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The parameter checks every layer's validate() is written with (STYLE.md §3: validation that
 // says what is wrong). Each failed check appends one FieldError naming the key path, the

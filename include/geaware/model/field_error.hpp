@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // One parameter that failed validation: what every layer's validate() returns (STYLE.md §3),
 // what loaders turn into "file:line: key: …" and what model::describeErrors prints.

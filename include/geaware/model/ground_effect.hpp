@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Controller-side ground-effect model of the paper: additional thrust F_G(h) (eq. 5), leveling
 // torque M_G(h) (eq. 13–14) and its "payload ball" equivalent inertia J'(h) (eq. 24–25).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A regular grid of terrain heights: the value type between the height-map file (io/) and the
 // simulator's height-map terrain (sim::HeightMap), so that neither depends on the other.

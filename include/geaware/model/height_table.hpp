@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A curve of height given at measured points ("knots"), for ground-effect curves that the
 // paper's closed forms do not follow (docs/vehicle-file.md, "Tables instead of formulas").

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Plausibility limits of IMU readings: the widest full-scale ranges of MEMS IMUs, ±4000 °/s and
 // ±32 g (TDK ICM-42686-P; the BMI088 of the estimator's noise model reads ±2000 °/s and ±24 g).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Second-order Butterworth low-pass filter on fixed-size vectors (bilinear transform with
 // pre-warping), the one filter type of the controller and the disturbance observer: incremental

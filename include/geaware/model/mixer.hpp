@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The X-quadrotor mixer of the paper (eq. 2):
 //   [T; τ_B] = M·N²,  M = diag(k_T, (√2·b/4)·k_TX, (√2·b/4)·k_TY, k_I)·A,

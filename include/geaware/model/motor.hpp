@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Motor and ESC models of the paper's supplementary section 3: single-rotor thrust and torque,
 // and the quadratic throttle curve with its inverse.

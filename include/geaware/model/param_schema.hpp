@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A parameter schema: one row per parameter of a parameter struct T — its key path in the
 // parameter file, its unit, its valid range and an accessor into T — so that the loader

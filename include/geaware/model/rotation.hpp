@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Rotations as unit quaternions: the Log and Exp maps between a rotation and its rotation
 // vector (angle·axis), and the angle between two attitudes. The one place for these maps; the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Height-dependent rotor drag of the paper (eq. 18): f_D = −R·D(h)·Rᵀ·v, D(h) = diag(d_x, d_y, 0)
 // interpolated linearly in h from a table measured per height, held constant outside the table

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Sensor samples: the only things that cross the wall from the simulator (or a real vehicle)
 // to the estimator and controller. Plain value types, fixed size, no allocation.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The state estimate a controller flies on: what estimation/ produces and control/ reads (never
 // the simulator's truth). A plain value type in model/ so that neither layer includes the other.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Physical constants and unit conversions used across geaware. SI everywhere, except rotor
 // speed, which is in revolutions per minute (rpm) as in the paper.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The controller-side vehicle model in one object: parameters plus the ground-effect, drag,
 // mixer and throttle models built from them. Construction validates; an invalid parameter set

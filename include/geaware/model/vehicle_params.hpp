@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The controller-side description of a quadrotor: every number the models of the paper need,
 // with its unit in the field name and comment. The vehicle file format (config/vehicles/*.yaml)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The vehicle parameters' schema (model/param_schema.hpp): every key of the vehicle file
 // (docs/vehicle-file.md) with its unit, range and accessor into VehicleParams, in file order.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The Neural-Lander residual-force network (Shi et al. 2019, "Neural Lander: Stable Drone
 // Landing Control using Learned Dynamics", ICRA 2019): a ReLU multilayer perceptron

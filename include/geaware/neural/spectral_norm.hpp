@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Spectral norm of a weight matrix: exact (SVD) for certificates and tests, and the power
 // iteration of spectral normalisation (Miyato et al. 2018, used by Shi et al. 2019 §IV-B) for

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Training of the Neural-Lander residual network (Shi et al. 2019 §IV): mini-batch Adam on the
 // mean squared error of the residual force, with spectral normalisation of every layer after

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The residual network's weight file: a versioned YAML document holding the architecture, the
 // input standardisation, γ, every layer, and free-form provenance (the training command, the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Debian's headless Chromium, as the report module uses it: PNG export of a page (exportPng in
 // page.hpp) and, for tests, the DOM of a page after its scripts ran.

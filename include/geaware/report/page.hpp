@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The project's one report module: self-contained HTML pages (open from disk, no server, no
 // network) with interactive plots, and PNG export of a page through headless Chromium.

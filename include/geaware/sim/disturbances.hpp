@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Disturbances of the truth plant: near-ground recirculation turbulence and wind.
 // Both are seeded and deterministic; both are unknown to the controller.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The simulated IMU (the paper's flights: 200 Hz): gyro and specific force with
 // white noise and a bias random walk per axis, in the usual continuous-time densities

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The simulated motion-capture system: the pose of the body origin (geometric
 // centre) at a fixed rate, with noise, latency and dropouts.

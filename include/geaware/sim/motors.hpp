@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The four motors, their ESCs and the battery. Rotor speed follows a
 // first-order lag toward the ESC's steady speed for the throttle,

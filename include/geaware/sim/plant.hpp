@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The truth plant: rigid body + motors/ESC/battery + per-rotor aerodynamics over a
 // terrain, advanced at a fixed step by RK4, with ground-strike detection. The forces and torques

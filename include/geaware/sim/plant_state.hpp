@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The simulator's true state. Only sim/ and the experiment runner (for metrics) read it; the
 // controller sees it only through simulated sensors.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The simulated lattice time-of-flight ranger (the paper: 16×16 zones at 100 Hz,
 // under the body, looking down along −z_B). Each zone is one ray from the mount point along

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // 6-DoF rigid-body dynamics of the centre of mass and a classic RK4
 // integrator that takes the dynamics as a callable (STYLE.md point 7):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The paper's virtual test rigs (its section on methods), driven by the truth
 // aerodynamics (sim/rotor_aerodynamics.hpp):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Truth-side per-rotor aerodynamics: thrust, reaction torque and rotor drag of each rotor with
 // ground effect from that rotor's own distance to the surface below it. This is NOT the

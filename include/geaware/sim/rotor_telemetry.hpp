@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Simulated rotor-speed telemetry (the paper: bidirectional DShot at 200 Hz): the
 // true rotor speeds plus white noise, quantised to the telemetry's resolution, never negative.

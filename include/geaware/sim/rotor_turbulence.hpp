@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Near-ground turbulence from per-rotor thrust fluctuations (docs/world.md §7): the as-built
 // world's law in place of GroundTurbulence's body-axis law (GroundTurbulenceParams::per_rotor).

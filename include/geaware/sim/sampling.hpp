@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Seeded noise and fixed-rate scheduling, shared by the simulated sensors and the disturbances.
 //

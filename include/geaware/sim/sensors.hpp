@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // All the simulated sensors of one vehicle, each at its own rate with its own
 // seeded noise stream: IMU, motion capture, rotor-speed telemetry and the lattice ranger. The

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The surfaces under (and, later, around) the vehicle. Terrain is a height field z = H(x, y) in
 // the world frame (z up): flat ground, a tilted plane, a step or table edge, or a height map

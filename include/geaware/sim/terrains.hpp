@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The concrete terrains: flat ground, a tilted plane, a step or table edge, and a
 // height map (a grid of heights). Each overrides rayCast with an exact method: a closed form for

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The vehicle as it really is: the simulator's "truth", which may differ from the nominal
 // vehicle the controller believes in (model::VehicleParams). Mass, inertia, centre of gravity,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The simulated world of a flight or a campaign, in one aggregate: the vehicle as it is built
 // (sim::TruthParams), its sensors, the disturbances of the room it flies in, how much it varies

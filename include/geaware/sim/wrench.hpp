@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A force and a torque acting on the vehicle, both in the body frame, the torque about the
 // centre of mass. Every physical contribution of the simulator produces one; the plant sums them.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Flat outputs of a multicopter (paper eq. 19): position and yaw with their derivatives.
 // World frame, z up; SI units.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The hover-descent manoeuvre of the paper's leveling-torque experiments: hover at a safe
 // height, descend slowly into ground effect, hold near the ground. The descent follows a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The figure-eight of the paper's tracking experiments (Table I): a Lemniscate of Gerono
 //   P(θ) = centre + (A·sin θ, B·sin 2θ, 0),   z = height,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Minimum-snap piecewise polynomials through waypoints, with fixed segment durations.
 //

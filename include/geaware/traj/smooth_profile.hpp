@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A 1-D progress profile s(t): the rate ṡ ramps from 0 up to a cruise rate V, cruises, and ramps
 // back down to 0, covering a total distance S exactly. The ramps follow the degree-7

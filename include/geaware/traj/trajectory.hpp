@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A trajectory gives the flat outputs p…snap and ψ, ψ̇, ψ̈ analytically at any time in
 // [0, duration()]. Before 0 and after duration() it rests at its first or last point (all

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Counts heap allocations, so a test can assert that a hot path (a control or simulation step,
 // trajectory sampling, network inference) never allocates. It REPLACES the global allocation

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Comparison of Eigen matrices in tests: on failure both sides and the largest difference are
 // printed, so a failing test says what was expected and what came out.

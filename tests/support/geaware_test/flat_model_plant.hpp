@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A small test integrator of the rigid-body model the flat map inverts (paper eq. 27):
 //   m·a = −m·g·z_W + (1 + F_G(h))·T·z_B − R·D(h)·Rᵀ·v,   J'(h)·ω̇ = −ω × J'(h)·ω + τ_B,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The paper's quadrotor for tests: the built-in default vehicle (config/vehicles/paper_quad.yaml).
 
