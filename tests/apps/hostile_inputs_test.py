@@ -11,6 +11,7 @@ hard link, a symlink, a FIFO). Prints one line per failing case and a summary:
 """
 
 import hashlib
+import json
 import os
 import shutil
 import subprocess
@@ -153,7 +154,7 @@ def setup(d):
     w("inf_vehicle.yaml", edited(vehicle, "k_T_N_per_rpm2: 4.0083e-8", "k_T_N_per_rpm2: .inf"))
     w("nan_truth.yaml", open(vehicle).read() + "truth:\n  motor:\n    time_constant_s: .nan\n")
     w("existing.csv", "precious\n")
-    w("existing.json", "{\"precious\": true}\n")
+    w("existing.json", json.dumps({"precious": True}) + "\n")
     w("existing.yaml", "precious: true\n")
     subprocess.run([GEAWARE, "rig", "rotor", "--out", "rotor.csv"], cwd=d, check=True,
                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)

@@ -7,6 +7,7 @@
 // byte as it was, with no temporary file left behind.
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -156,12 +157,14 @@ TEST_F(OutputSafetyTest, FlyDirectoriesDevicesAndFifosAreRefused) {
 // existing log keeps its bytes.
 TEST_F(OutputSafetyTest, FlyRefusedRunKeepsTheExistingOutput) {
   put("existing.csv", "precious log\n");
-  put("existing.json", "{\"precious\": true}\n");
+  // A JSON file of the user's, made with the JSON library as any tool would write it.
+  const std::string precious_json = nlohmann::json{{"precious", true}}.dump(2) + "\n";
+  put("existing.json", precious_json);
   const CliRun r = geaware("fly --trajectory lemniscate --height 0.12 --speed 6 --controller model:model_indi "
                         "--quiet --out existing.csv --json existing.json");
   EXPECT_NE(r.exit_code, 0) << r.err;
   EXPECT_EQ(get("existing.csv"), "precious log\n");
-  EXPECT_EQ(get("existing.json"), "{\"precious\": true}\n");
+  EXPECT_EQ(get("existing.json"), precious_json);
   EXPECT_EQ(names(), (std::vector<std::string>{"existing.csv", "existing.json", "scenario.yaml", "vehicle.yaml"}));
 }
 
