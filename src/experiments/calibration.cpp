@@ -282,8 +282,26 @@ void fly(const model::VehicleParams& file_vehicle, const CalibrationWorld& world
                           hover.fit.k_T_N_per_rpm2.std_error});
   c.warnings.insert(c.warnings.end(), hover.fit.warnings.begin(), hover.fit.warnings.end());
   c.flights.push_back(hover.flight);
+  // The estimator's process noise from the same hover: what the IMU delivers at the time scales
+  // the filter integrates over, the flight controller's vibration included (docs/results.md).
+  const ident::ImuNoiseFit& noise = hover.imu_noise;
+  const std::string noise_source = fmt::format("hover flight, Allan deviation ({} samples)", noise.samples);
+  c.parameters.push_back({"estimator.accel_noise_density", "m/s²/√Hz", noise_source,
+                          c.estimator.accel_noise_density, noise.accel_noise_density_m_per_s2_sqrtHz, 0.0});
+  c.parameters.push_back({"estimator.gyro_noise_density", "rad/s/√Hz", noise_source,
+                          c.estimator.gyro_noise_density, noise.gyro_noise_density_rad_per_s_sqrtHz, 0.0});
+  // A density of zero (an IMU that read a constant) would make the filter trust it absolutely.
+  if (noise.accel_noise_density_m_per_s2_sqrtHz > 0.0 && noise.gyro_noise_density_rad_per_s_sqrtHz > 0.0) {
+    c.estimator.accel_noise_density = noise.accel_noise_density_m_per_s2_sqrtHz;
+    c.estimator.gyro_noise_density = noise.gyro_noise_density_rad_per_s_sqrtHz;
+  } else {
+    c.warnings.push_back("IMU noise: the hover flight's IMU read a constant; the estimator keeps its defaults");
+  }
+  c.warnings.insert(c.warnings.end(), noise.warnings.begin(), noise.warnings.end());
 
-  const detail::DragCalibration drag = detail::calibrateDrag(c.vehicle, world, sweeps);
+  CalibrationWorld drag_world = world;
+  drag_world.flights.eskf = c.estimator;
+  const detail::DragCalibration drag = detail::calibrateDrag(c.vehicle, drag_world, sweeps);
   model::DragTableParams table;
   for (std::size_t k = 0; k < drag.bands.size(); ++k) {
     const ident::DragBand& b = drag.bands[k];
@@ -305,6 +323,7 @@ void fly(const model::VehicleParams& file_vehicle, const CalibrationWorld& world
 void weighAndFly(const model::VehicleParams& file_vehicle, const CalibrationWorld& world,
                  const CalibrationSweeps& sweeps, ControllerCalibration& c) {
   weigh(file_vehicle, world, sweeps, c);
+  c.estimator = world.flights.eskf;
   if (sweeps.flights) {
     fly(file_vehicle, world, sweeps, c);
     c.vehicle.name = file_vehicle.name + " (calibrated: rigs, scale, hover and drag flights)";

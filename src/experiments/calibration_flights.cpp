@@ -3,10 +3,12 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cstddef>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include <Eigen/Geometry>
@@ -35,6 +37,12 @@ class HoldPoint final : public traj::Trajectory {
 /// What a team logs for `geaware identify flight`, from the controller's own inputs on every
 /// control tick of the trajectory with a valid ranger height: the columns CsvFlightLog writes
 /// (ã_ext = R·f_B − z_B·k_T·Σn²/m with the belief's k_T and mass). Reads nothing of the truth.
+/// The IMU samples of a calibration flight (body axes), beside its ident::FlightLog.
+struct ImuLog {
+  std::array<std::vector<double>, 3> gyro_B;   ///< [rad/s]
+  std::array<std::vector<double>, 3> accel_B;  ///< [m/s²]
+};
+
 class IdentLogCollector final : public FlightObserver {
  public:
   IdentLogCollector(const model::VehicleParams& belief, std::string source, std::size_t reserve)
@@ -46,6 +54,8 @@ class IdentLogCollector final : public FlightObserver {
     for (auto& c : log_.q_WB) c.reserve(reserve);
     for (auto& c : log_.a_ext_W) c.reserve(reserve);
     for (auto& c : log_.n_rpm) c.reserve(reserve);
+    for (auto& c : imu_.gyro_B) c.reserve(reserve);
+    for (auto& c : imu_.accel_B) c.reserve(reserve);
   }
 
   void onTick(const FlightTick& k) noexcept override {
@@ -60,8 +70,11 @@ class IdentLogCollector final : public FlightObserver {
     const Eigen::Quaterniond& q = in.estimate.q_WB;
     const double qc[4] = {q.w(), q.x(), q.y(), q.z()};
     for (std::size_t a = 0; a < 3; ++a) {
-      log_.v_W[a].push_back(in.estimate.v_W(static_cast<Eigen::Index>(a)));
-      log_.a_ext_W[a].push_back(a_ext(static_cast<Eigen::Index>(a)));
+      const auto i = static_cast<Eigen::Index>(a);
+      log_.v_W[a].push_back(in.estimate.v_W(i));
+      log_.a_ext_W[a].push_back(a_ext(i));
+      imu_.gyro_B[a].push_back(in.gyro_B(i));
+      imu_.accel_B[a].push_back(in.accel_B(i));
     }
     for (std::size_t a = 0; a < 4; ++a) {
       log_.q_WB[a].push_back(qc[a]);
@@ -70,16 +83,18 @@ class IdentLogCollector final : public FlightObserver {
   }
 
   [[nodiscard]] const ident::FlightLog& log() const noexcept { return log_; }
+  [[nodiscard]] const ImuLog& imu() const noexcept { return imu_; }
 
  private:
   double k_T_;
   double mass_kg_;
   ident::FlightLog log_;
+  ImuLog imu_;  // the IMU samples the controller was given, at the log's times
 };
 
 /// Flies `trajectory` with `belief` in the world and returns the flight's record and its log.
 /// Throws std::runtime_error when the flight strikes the ground: a team would not use it.
-std::pair<CalibrationFlight, ident::FlightLog> fly(
+std::tuple<CalibrationFlight, ident::FlightLog, ImuLog> fly(
     const model::VehicleParams& belief, const CalibrationWorld& world,
     const CalibrationSweeps& sweeps, std::shared_ptr<const traj::Trajectory> trajectory,
     std::uint64_t seed, std::string purpose) {
@@ -112,7 +127,7 @@ std::pair<CalibrationFlight, ident::FlightLog> fly(
                                          c.purpose, control::configurationName(f.controller),
                                          c.crash));
   }
-  return {c, collector.log()};
+  return {c, collector.log(), collector.imu()};
 }
 
 }  // namespace
@@ -121,10 +136,11 @@ HoverCalibration calibrateHover(const model::VehicleParams& belief, const Calibr
                                 const CalibrationSweeps& sweeps) {
   auto hold = std::make_shared<HoldPoint>(Eigen::Vector3d(0.0, 0.0, sweeps.hover_height_m),
                                           sweeps.hover_s);
-  auto [flight, log] = fly(belief, world, sweeps, std::move(hold), 50 + sweeps.seed,
-                           fmt::format("hover k_T at {:g} m", sweeps.hover_height_m));
+  auto [flight, log, imu] = fly(belief, world, sweeps, std::move(hold), 50 + sweeps.seed,
+                                fmt::format("hover k_T at {:g} m", sweeps.hover_height_m));
   HoverCalibration h;
   h.fit = ident::fitHoverThrust(log, belief);
+  h.imu_noise = ident::fitImuNoise(log.t_s, imu.gyro_B, imu.accel_B);
   h.flight = std::move(flight);
   return h;
 }
@@ -142,7 +158,7 @@ DragCalibration calibrateDrag(const model::VehicleParams& belief, const Calibrat
     p.height_m = h;
     p.peak_speed_mps = sweeps.drag_speed_mps;
     p.laps = 1;
-    auto [flight, log] = fly(belief, world, sweeps, std::make_shared<traj::Lemniscate>(p),
+    [[maybe_unused]] auto [flight, log, imu] = fly(belief, world, sweeps, std::make_shared<traj::Lemniscate>(p),
                              60 + sweeps.seed + k++, fmt::format("drag at {:g} m", h));
     const ident::IdentifyResult id = ident::identifyFlight(log, belief, options);
     const ident::DragFit& fit = *id.fits.drag;

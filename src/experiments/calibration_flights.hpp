@@ -10,12 +10,14 @@
 
 #include "geaware/experiments/calibration.hpp"
 #include "geaware/ident/flight_fit.hpp"
+#include "geaware/ident/imu_noise.hpp"
 #include "geaware/model/vehicle_params.hpp"
 
 namespace geaware::experiments::detail {
 
 struct HoverCalibration {
   ident::HoverThrustFit fit;
+  ident::ImuNoiseFit imu_noise;  ///< the estimator's process noise, from the same hover
   CalibrationFlight flight;
 };
 

@@ -170,6 +170,7 @@ CampaignResult runCampaign(const CampaignOptions& o) {
   FlightScenario base = baseScenario(o, world);
   r.calibration = calibrateController(o.vehicle, {base, world.team_scale_error_std_kg}, o.calibration);
   base.vehicle = r.calibration.vehicle;
+  base.eskf = r.calibration.estimator;
   r.calibration_s = since(t0);
   say(fmt::format("calibration: {} platform + {} stand rows, {} flights, identified in {:.2f} s",
                   r.calibration.platform_rows, r.calibration.stand_rows, r.calibration.flights.size(),

@@ -262,6 +262,7 @@ CalibratedWorld calibrate(const RobustnessOptions& o, const std::string& name,
   r.calibration_s += since(t0);
   w.base = world;
   w.base.vehicle = w.calibration.calibration.vehicle;
+  w.base.eskf = w.calibration.calibration.estimator;
   if (fliesNeural(o)) {
     t0 = Clock::now();
     NeuralSettings neural = o.neural;

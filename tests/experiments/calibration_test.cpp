@@ -6,16 +6,17 @@
 
 #include "geaware/experiments/calibration.hpp"
 
+#include <cmath>
 #include <cstdint>
 
 #include <gtest/gtest.h>
 
-#include <cmath>
-
 #include "geaware/io/truth_file.hpp"
 #include "geaware/io/vehicle_file.hpp"
 #include "geaware/model/rotor_drag.hpp"
+#include "geaware/sim/imu.hpp"
 #include "geaware/sim/sampling.hpp"
+#include "geaware/sim/world.hpp"
 
 namespace geaware::experiments {
 namespace {
@@ -88,6 +89,42 @@ TEST(CalibrationFlights, TheHoverKtIsTheTruthsInFlightKtNotTheFiles) {
   const double file_k_T = io::builtinVehicle().rotor.k_T_N_per_rpm2;
   EXPECT_NEAR(s.k_T_hover_N_per_rpm2 / (1.08 * effective), 1.0, 0.02);
   EXPECT_GT(s.vehicle.rotor.k_T_N_per_rpm2 / file_k_T, 1.05);
+}
+
+/// The low-frequency density of the IMU the world gives, per sensor: the vibration's raw white
+/// noise behind the flight controller's filter (DC gain 1) and the sensor's own white noise.
+double lowFrequencyDensity(const sim::ImuParams& imu, double vibration_std, double sensor_density) {
+  double vib = 0.0;
+  if (vibration_std > 0.0) {
+    const sim::LowPass2 lp(imu.filter_rate_Hz, imu.lowpass_cutoff_Hz);
+    vib = vibration_std / std::sqrt(lp.noiseGain()) / std::sqrt(imu.filter_rate_Hz);
+  }
+  return std::hypot(vib, sensor_density);
+}
+
+TEST(CalibrationFlights, TheEstimatorsNoiseIsWhatTheHoverFlightsImuDelivers) {
+  // As built: the vibration behind the 20 Hz filter dominates the accelerometer (≈ 0.060
+  // m/s²/√Hz at low frequency against the sensor's 0.004). The hover's own motion adds to the
+  // Allan deviation, so the fit may read above it, never far below.
+  const ControllerCalibration& c = asBuiltCalibration();
+  const sim::ImuParams& imu = asBuilt().sensors.imu;
+  const double accel = lowFrequencyDensity(imu, imu.vibration_accel_std_m_per_s2, imu.accel_noise_density_m_per_s2_sqrtHz);
+  const double gyro = lowFrequencyDensity(imu, imu.vibration_gyro_std_rad_per_s, imu.gyro_noise_density_rad_per_s_sqrtHz);
+  EXPECT_GT(c.estimator.accel_noise_density / accel, 0.9);
+  EXPECT_LT(c.estimator.accel_noise_density / accel, 1.3);
+  EXPECT_GT(c.estimator.gyro_noise_density / gyro, 0.9);
+  bool listed = false;
+  for (const IdentifiedParameter& p : c.parameters) listed |= p.key == "estimator.accel_noise_density";
+  EXPECT_TRUE(listed);
+
+  // The ideal world has no vibration: the fit reads the sensor's own accelerometer noise.
+  const sim::World ideal = sim::idealWorld(io::builtinVehicle());
+  const ControllerCalibration i = calibrateController(io::builtinVehicle(), calibrationWorld(ideal));
+  const double sensor = ideal.sensors.imu.accel_noise_density_m_per_s2_sqrtHz;
+  EXPECT_NEAR(i.estimator.accel_noise_density / sensor, 1.0, 0.15);
+  // Without flights nothing is measured: the estimator keeps the world's settings.
+  const ControllerCalibration r = calibrateController(io::builtinVehicle(), calibrationWorld(asBuilt()), rigsAndScaleOnly());
+  EXPECT_EQ(r.estimator.accel_noise_density, calibrationWorld(asBuilt()).flights.eskf.accel_noise_density);
 }
 
 TEST(CalibrationFlights, TheDragTableComesFromTheFlights) {

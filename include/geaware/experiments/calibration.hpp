@@ -134,6 +134,10 @@ struct ControllerCalibration {
   double k_T_platform_N_per_rpm2 = 0.0;  ///< level board (F_G's and M_G's thrust scale)
   double k_T_hover_N_per_rpm2 = 0.0;     ///< hover flight (the controller's), 0 without flights
   std::vector<CalibrationFlight> flights;  ///< hover, then the drag flights
+  /// The state estimator's settings: the world's, with the IMU's white-noise densities measured
+  /// on the hover flight (ident::fitImuNoise) when flights are flown. The drag flights and
+  /// every flight of the belief use it.
+  estimation::EskfParams estimator;
   /// F_G(h) on the level board [-]: truth ΣF_z/ΣT_free − 1, identified and file g2/(h² + g1).
   std::vector<CurvePoint> thrust_ratio;
   /// Leveling torque about y at `torque_tilt_deg` and `torque_rpm` [N·m] (negative:
