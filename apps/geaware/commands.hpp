@@ -59,6 +59,9 @@ Runner addBenchCommand(CLI::App& app);
 /// `geaware identify {rotor,platform,flight,correlations} LOG.csv`: identification from rig and
 /// flight logs (ident/identify.hpp). docs/identification.md.
 Runner addIdentifyCommand(CLI::App& app);
+/// `geaware logs inspect LOG`: topics, rates, gaps and channel health of a flight log
+/// (io/log_inspect.hpp). docs/identification.md.
+Runner addLogsCommand(CLI::App& app);
 /// `geaware rig {platform,rotor,calibrate}`: the virtual test rigs on the truth simulator and the
 /// calibration of the truth against the paper's measurements. docs/sim-aerodynamics.md.
 Runner addRigCommand(CLI::App& app);

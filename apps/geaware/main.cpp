@@ -78,6 +78,7 @@ int main(int argc, char** argv) {
   for (const auto& [name, add] : {std::pair{"model", &cli::addModelCommand},
                                   std::pair{"identify", &cli::addIdentifyCommand},
                                   std::pair{"rig", &cli::addRigCommand},
+                                  std::pair{"logs", &cli::addLogsCommand},
                                   std::pair{"fly", &cli::addFlyCommand},
                                   std::pair{"bench", &cli::addBenchCommand}}) {
     cli::Runner runner = add(app);  // registers the subcommand `name`

@@ -80,6 +80,11 @@ struct CsvReader::Impl {
   bool eof = false;
 
   std::vector<std::string> header;
+  std::vector<std::string> bare_names;  // header names without their units
+  std::vector<std::string> units;       // the unit each header name carries ("" if none)
+  char delim = ',';
+  std::string pending;                  // first data row read while looking for the header
+  bool has_pending = false;
   std::vector<int> slot_of_cell;  // header cell → index in the requested columns, −1: skipped
   int time_slot = -1;
   std::size_t line_no = 0;        // physical line of the last line taken from the buffer
@@ -144,29 +149,102 @@ struct CsvReader::Impl {
     }
   }
 
+  // The cell separator for a file whose header line is `text` (CsvReadOptions::delimiter).
+  static char detectDelimiter(std::string_view text) {
+    const char candidates[] = {',', ';', '\t'};
+    char best = 0;
+    std::size_t best_count = 0;
+    for (const char c : candidates) {
+      const auto n = static_cast<std::size_t>(std::count(text.begin(), text.end(), c));
+      if (n > best_count) best = c, best_count = n;
+    }
+    if (best != 0) return best;
+    return text.find_first_of(" \t") != std::string_view::npos ? ' ' : ',';
+  }
+
+  // Calls cell(text) for each cell of `text`, split at delim (' ': runs of spaces and tabs).
+  template <typename F>
+  void splitCells(std::string_view text, F&& cell) const {
+    if (delim == ' ') {
+      std::size_t pos = text.find_first_not_of(" \t");
+      while (pos != std::string_view::npos) {
+        const std::size_t stop = text.find_first_of(" \t", pos);
+        cell(text.substr(pos, stop == std::string_view::npos ? stop : stop - pos));
+        pos = stop == std::string_view::npos ? stop : text.find_first_not_of(" \t", stop);
+      }
+      return;
+    }
+    std::size_t pos = 0;
+    for (;;) {
+      const std::size_t q = text.find(delim, pos);
+      cell(text.substr(pos, q == std::string_view::npos ? q : q - pos));
+      if (q == std::string_view::npos) break;
+      pos = q + 1;
+    }
+  }
+
+  // Whether every cell of `text` is a number (then a '#' line before it was the header).
+  bool isDataRow(std::string_view text) const {
+    bool all = true;
+    std::size_t cells = 0;
+    splitCells(text, [&](std::string_view c) {
+      c = detail::trimBlanks(c);
+      ++cells;
+      if (!c.empty() && c.front() == '+') c.remove_prefix(1);
+      double v = 0.0;
+      const auto [ptr, ec] = std::from_chars(c.data(), c.data() + c.size(), v);
+      if (c.empty() || ptr != c.data() + c.size() || (ec != std::errc() && ec != std::errc::result_out_of_range)) {
+        all = false;
+      }
+    });
+    return all && cells > 0;
+  }
+
   void readHeader() {
+    std::string hash_header;  // the last '#' line before the first other line
+    std::size_t hash_line = 0;
+    std::string_view text;
+    std::size_t header_line = 0;
     for (;;) {
       const auto line = nextLine();
       if (!line) fail(line_no, "", "no header line (the file is empty)");
-      std::string_view text = detail::trimBlanks(*line);
+      text = detail::trimBlanks(*line);
       if (line_no == 1 && text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);  // BOM
-      if (text.empty() || text.front() == '#') continue;
-      // Split the header into names.
-      std::size_t pos = 0;
-      for (;;) {
-        const std::size_t q = text.find(options.delimiter, pos);
-        std::string_view name =
-            detail::trimBlanks(text.substr(pos, q == std::string_view::npos ? q : q - pos));
-        if (name.size() >= 2 && name.front() == '"' && name.back() == '"') {
-          name = name.substr(1, name.size() - 2);
-        }
-        header.emplace_back(name);
-        if (q == std::string_view::npos) break;
-        pos = q + 1;
+      if (text.empty()) continue;
+      if (text.front() == '#') {
+        hash_header = std::string(detail::trimBlanks(text.substr(1)));
+        hash_line = line_no;
+        continue;
+      }
+      delim = options.delimiter != 0 ? options.delimiter : detectDelimiter(hash_line > 0 ? hash_header : text);
+      if (hash_line > 0 && !hash_header.empty() && isDataRow(text)) {
+        pending = std::string(text);  // the first data row, returned by the first next()
+        has_pending = true;
+        text = hash_header;
+        header_line = hash_line;
+      } else {
+        delim = options.delimiter != 0 ? options.delimiter : detectDelimiter(text);
+        header_line = line_no;
       }
       break;
     }
-    const std::size_t header_line = line_no;
+    splitCells(text, [&](std::string_view cell) {
+      std::string_view name = detail::trimBlanks(cell);
+      if (name.size() >= 2 && name.front() == '"' && name.back() == '"') name = name.substr(1, name.size() - 2);
+      header.emplace_back(name);
+      // A unit after the name: z[mm] or z (mm).
+      std::string_view bare = name, unit;
+      for (const auto& [open, close] : {std::pair{'[', ']'}, std::pair{'(', ')'}}) {
+        const auto at = name.rfind(open);
+        if (name.size() > 2 && name.back() == close && at != std::string_view::npos && at > 0) {
+          bare = detail::trimBlanks(name.substr(0, at));
+          unit = detail::trimBlanks(name.substr(at + 1, name.size() - at - 2));
+          break;
+        }
+      }
+      bare_names.emplace_back(bare);
+      units.emplace_back(unit);
+    });
     for (std::size_t i = 0; i < header.size(); ++i) {
       for (std::size_t j = 0; j < i; ++j) {
         if (header[i] == header[j] && !header[i].empty()) {
@@ -179,7 +257,11 @@ struct CsvReader::Impl {
     slot_of_cell.assign(header.size(), -1);
     std::vector<std::string> missing;
     for (std::size_t k = 0; k < options.columns.size(); ++k) {
-      const auto it = std::find(header.begin(), header.end(), options.columns[k].name);
+      auto it = std::find(header.begin(), header.end(), options.columns[k].name);
+      if (it == header.end()) {  // the name without its unit
+        const auto b = std::find(bare_names.begin(), bare_names.end(), options.columns[k].name);
+        it = header.begin() + (b - bare_names.begin());
+      }
       if (it == header.end()) {
         missing.push_back(options.columns[k].name);
       } else {
@@ -244,6 +326,14 @@ struct CsvReader::Impl {
     return v;
   }
 
+  void takeCell(std::string_view text, std::size_t cell, std::span<double> values) const {
+    if (cell >= slot_of_cell.size()) {
+      fail(line_no, "", "row has more cells than the header's " + std::to_string(header.size()));
+    }
+    const int slot = slot_of_cell[cell];
+    if (slot >= 0) values[static_cast<std::size_t>(slot)] = parseCell(text, static_cast<std::size_t>(slot));
+  }
+
   bool next(std::span<double> values) {
     if (finished) return false;
     if (values.size() != options.columns.size()) {
@@ -251,7 +341,13 @@ struct CsvReader::Impl {
                                   std::to_string(options.columns.size()) + " values");
     }
     for (;;) {
-      const auto line = nextLine();
+      std::optional<std::string_view> line;
+      if (has_pending) {
+        has_pending = false;
+        line = std::string_view(pending);
+      } else {
+        line = nextLine();
+      }
       if (!line) {
         finished = true;
         if (rows < options.min_rows) {
@@ -271,26 +367,19 @@ struct CsvReader::Impl {
                                  std::to_string(line_no) + ")");
       }
       // Split and parse only the requested cells.
-      const char* p = text.data();
-      const char* const stop = text.data() + text.size();
       std::size_t cell = 0;
-      for (;;) {
-        const char* q = static_cast<const char*>(
-            std::memchr(p, options.delimiter, static_cast<std::size_t>(stop - p)));
-        const char* cell_end = q == nullptr ? stop : q;
-        if (cell >= slot_of_cell.size()) {
-          fail(line_no, "", "row has more cells than the header's " +
-                                std::to_string(header.size()));
+      if (delim == ' ') {
+        splitCells(text, [&](std::string_view c) { takeCell(c, cell++, values); });
+      } else {
+        const char* p = text.data();
+        const char* const stop = text.data() + text.size();
+        for (;;) {
+          const char* q = static_cast<const char*>(std::memchr(p, delim, static_cast<std::size_t>(stop - p)));
+          const char* cell_end = q == nullptr ? stop : q;
+          takeCell(std::string_view(p, static_cast<std::size_t>(cell_end - p)), cell++, values);
+          if (q == nullptr) break;
+          p = q + 1;
         }
-        const int slot = slot_of_cell[cell];
-        if (slot >= 0) {
-          values[static_cast<std::size_t>(slot)] =
-              parseCell(std::string_view(p, static_cast<std::size_t>(cell_end - p)),
-                        static_cast<std::size_t>(slot));
-        }
-        ++cell;
-        if (q == nullptr) break;
-        p = q + 1;
       }
       if (cell != header.size()) {
         fail(line_no, header[cell], "row has " + std::to_string(cell) + " cells, the header " +
@@ -342,6 +431,8 @@ std::size_t CsvReader::line() const noexcept { return impl_->row_line; }
 std::size_t CsvReader::bytesRead() const noexcept { return impl_->consumed; }
 const std::string& CsvReader::source() const noexcept { return impl_->source; }
 const std::vector<std::string>& CsvReader::header() const noexcept { return impl_->header; }
+const std::vector<std::string>& CsvReader::units() const noexcept { return impl_->units; }
+char CsvReader::delimiter() const noexcept { return impl_->delim; }
 
 CsvTable readCsv(const std::filesystem::path& file, const CsvReadOptions& options) {
   CsvReader reader(file, options);

@@ -53,13 +53,19 @@ struct CsvReadOptions {
   /// strictly from row to row. Empty: no check.
   std::string time_column = "t_s";
   std::size_t min_rows = 2;                ///< fewer data rows is an error
-  char delimiter = ',';
+  /// Cell separator; 0: detected from the header line (the most frequent of ',', ';' and tab;
+  /// none of them: runs of spaces); ' ': runs of spaces and tabs.
+  char delimiter = 0;
   std::size_t buffer_bytes = 1u << 22;     ///< read buffer [bytes]; grows for longer lines
 };
 
 /// Reads one CSV file row by row. The header is the first line that is neither empty nor a
-/// comment ('#'); after it every line is a data row (an empty line ends the data: only empty
-/// lines may follow). Cells are trimmed of spaces; a leading '+' is accepted.
+/// comment ('#'), except that a '#' line directly followed by a data row (every cell a number)
+/// is the header (lab exports write "# t,z"): the '#' and the blanks after it are dropped.
+/// After the header every line is a data row (an empty line ends the data: only empty lines
+/// may follow). Cells are trimmed of spaces; a leading '+' is accepted. A header name may carry
+/// its unit, `z[mm]` or `z (mm)`: a requested column matches the whole name or the name without
+/// the unit, and units() reports the unit.
 class CsvReader {
  public:
   /// Opens the file and checks the header; throws CsvError.
@@ -81,6 +87,10 @@ class CsvReader {
   [[nodiscard]] const std::string& source() const noexcept;  ///< the file, as given
   /// Every column name of the header, in file order.
   [[nodiscard]] const std::vector<std::string>& header() const noexcept;
+  /// The unit each header name carries ("mm" for `z[mm]`; empty when none), in file order.
+  [[nodiscard]] const std::vector<std::string>& units() const noexcept;
+  /// The cell separator in use (detected or given; ' ' for runs of blanks).
+  [[nodiscard]] char delimiter() const noexcept;
 
  private:
   struct Impl;

@@ -1,0 +1,245 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The ULog reader against PX4's own reader: tests/fixtures/px4/ holds two real logs from pyulog's
+// test data and oracle/ what pyulog reads from them (one CSV per topic instance, values printed
+// with full precision). Every topic instance, field and value of the oracle must come back:
+// timestamps exactly, integers exactly, floats bitwise (a float32 widened to double is exact, so
+// pyulog's double and ours are the same bits; NaN matches NaN). Then the ways a file goes bad.
+
+#include "geaware/io/log_channels.hpp"
+
+#include <bit>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+using geaware::io::LogData;
+using geaware::io::LogError;
+using geaware::io::readULog;
+
+fs::path fixtures() {
+  const char* dir = std::getenv("GEAWARE_SOURCE_DIR");
+  return fs::path(dir != nullptr ? dir : ".") / "tests" / "fixtures" / "px4";
+}
+
+std::vector<std::byte> bytesOf(const fs::path& f) {
+  std::ifstream in(f, std::ios::binary);
+  const std::string s((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::vector<std::byte> b(s.size());
+  std::memcpy(b.data(), s.data(), s.size());
+  return b;
+}
+
+struct OracleTable {
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> rows;
+};
+
+OracleTable readOracle(const fs::path& f) {
+  OracleTable t;
+  std::ifstream in(f);
+  std::string line;
+  std::getline(in, line);
+  std::stringstream header(line);
+  for (std::string cell; std::getline(header, cell, ',');) t.names.push_back(cell);
+  while (std::getline(in, line)) {
+    std::vector<double> row;
+    std::stringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) row.push_back(std::strtod(cell.c_str(), nullptr));
+    EXPECT_EQ(row.size(), t.names.size()) << f << ": " << line;
+    t.rows.push_back(std::move(row));
+  }
+  return t;
+}
+
+bool sameValue(double a, double b) {
+  if (std::isnan(a) && std::isnan(b)) return true;
+  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
+
+// Every oracle file of `log` (FILE.TOPIC_INSTANCE.csv) against what readULog reads.
+void agreeWithOracle(const std::string& log_name, std::size_t expected_tables) {
+  const LogData log = readULog(fixtures() / (log_name + ".ulg"));
+  EXPECT_EQ(log.format, "ulog");
+  std::size_t tables = 0;
+  std::size_t values = 0;
+  for (const auto& entry : fs::directory_iterator(fixtures() / "oracle")) {
+    const std::string file = entry.path().filename().string();
+    if (!file.starts_with(log_name + ".")) continue;
+    const std::string stem = file.substr(log_name.size() + 1, file.size() - log_name.size() - 5);
+    const auto us = stem.rfind('_');
+    const std::string topic_name = stem.substr(0, us);
+    const auto instance = static_cast<unsigned>(std::stoul(stem.substr(us + 1)));
+    SCOPED_TRACE(file);
+    const auto* topic = log.topic(topic_name, instance);
+    ASSERT_NE(topic, nullptr) << "topic " << topic_name << " instance " << instance << " not read";
+    const OracleTable oracle = readOracle(entry.path());
+    ++tables;
+    // The same fields, no more and no fewer (trailing padding dropped as pyulog drops it).
+    ASSERT_EQ(topic->channels.size(), oracle.names.size());
+    ASSERT_EQ(topic->size(), oracle.rows.size());
+    for (std::size_t c = 0; c < oracle.names.size(); ++c) {
+      const auto* channel = topic->channel(oracle.names[c]);
+      ASSERT_NE(channel, nullptr) << "field " << oracle.names[c] << " not read";
+      ASSERT_EQ(channel->values.size(), oracle.rows.size());
+      for (std::size_t r = 0; r < oracle.rows.size(); ++r) {
+        ASSERT_TRUE(sameValue(channel->values[r], oracle.rows[r][c]))
+            << oracle.names[c] << " row " << r << ": read " << channel->values[r] << ", pyulog "
+            << oracle.rows[r][c];
+        ++values;
+      }
+    }
+    // The time axis is the timestamp [µs] in seconds.
+    const auto* ts = topic->channel("timestamp");
+    ASSERT_NE(ts, nullptr);
+    EXPECT_EQ(ts->type, geaware::io::FieldType::kUInt64);
+    EXPECT_EQ(ts->unit, "us");
+    for (std::size_t r = 0; r < topic->size(); ++r) ASSERT_EQ(topic->time_s[r], ts->values[r] * 1e-6);
+  }
+  EXPECT_EQ(tables, expected_tables);
+  EXPECT_GT(values, 1000u);
+}
+
+TEST(ULogReader, AgreesWithPyulogOnARecentPx4Log) { agreeWithOracle("sample_px4_events", 8); }
+
+TEST(ULogReader, AgreesWithPyulogOnAnOlderLogWithMultiInstanceTopics) {
+  agreeWithOracle("sample_log_small", 10);
+}
+
+TEST(ULogReader, KeepsFieldTypesInfoParametersAndMessages) {
+  const LogData log = readULog(fixtures() / "sample_px4_events.ulg");
+  const auto* esc = log.topic("esc_status");
+  ASSERT_NE(esc, nullptr);
+  EXPECT_EQ(esc->channel("esc[0].esc_rpm")->type, geaware::io::FieldType::kInt32);
+  EXPECT_EQ(esc->channel("esc[0].esc_voltage")->type, geaware::io::FieldType::kFloat);
+  EXPECT_EQ(log.topic("sensor_combined")->channel("gyro_rad[2]")->type, geaware::io::FieldType::kFloat);
+  EXPECT_FALSE(log.parameters.empty());
+  EXPECT_TRUE(log.info.contains("sys_name"));
+  EXPECT_TRUE(log.warnings.empty()) << log.warnings.front();
+}
+
+TEST(ULogReader, MemoryAndFileGiveTheSameLog) {
+  const auto file = fixtures() / "sample_log_small.ulg";
+  const auto bytes = bytesOf(file);
+  const LogData a = readULog(file);
+  const LogData b = readULog(bytes, "memory");
+  ASSERT_EQ(a.topics.size(), b.topics.size());
+  for (std::size_t i = 0; i < a.topics.size(); ++i) {
+    ASSERT_EQ(a.topics[i].channels.size(), b.topics[i].channels.size());
+    EXPECT_EQ(a.topics[i].time_s, b.topics[i].time_s);
+    for (std::size_t c = 0; c < a.topics[i].channels.size(); ++c) {
+      const auto& x = a.topics[i].channels[c].values;
+      const auto& y = b.topics[i].channels[c].values;
+      ASSERT_EQ(x.size(), y.size());
+      for (std::size_t k = 0; k < x.size(); ++k) ASSERT_TRUE(sameValue(x[k], y[k]));
+    }
+  }
+  EXPECT_EQ(a.parameters, b.parameters);
+}
+
+TEST(ULogReader, ReadsOnlyTheTopicsAskedFor) {
+  geaware::io::LogReadOptions o;
+  o.topics = {"vehicle_imu"};
+  const LogData log = readULog(fixtures() / "sample_log_small.ulg", o);
+  ASSERT_EQ(log.topics.size(), 3u);  // three instances
+  for (const auto& t : log.topics) EXPECT_EQ(t.name, "vehicle_imu");
+}
+
+TEST(ULogReader, ATruncatedLogIsReadUpToTheCutWithAWarning) {
+  auto bytes = bytesOf(fixtures() / "sample_px4_events.ulg");
+  const LogData whole = readULog(bytes, "whole");
+  bytes.resize(bytes.size() * 2 / 3 + 1);
+  const LogData cut = readULog(bytes, "cut.ulg");
+  ASSERT_FALSE(cut.warnings.empty());
+  EXPECT_NE(cut.warnings.front().find("cut off"), std::string::npos) << cut.warnings.front();
+  const auto* a = whole.topic("sensor_combined");
+  const auto* b = cut.topic("sensor_combined");
+  ASSERT_NE(b, nullptr);
+  EXPECT_LT(b->size(), a->size());
+  EXPECT_GT(b->size(), a->size() / 3);
+  for (std::size_t i = 0; i < b->size(); ++i) ASSERT_EQ(a->time_s[i], b->time_s[i]);
+}
+
+TEST(ULogReader, NotAULogFileNamesTheFileAndOffset) {
+  const std::string text = "t_s,h_m\n0,1\n";
+  std::vector<std::byte> b(text.size());
+  std::memcpy(b.data(), text.data(), text.size());
+  try {
+    (void)readULog(b, "flight.csv");
+    FAIL() << "no error";
+  } catch (const LogError& e) {
+    EXPECT_EQ(e.file(), "flight.csv");
+    EXPECT_TRUE(e.hasOffset());
+    EXPECT_EQ(e.offset(), 0u);
+    EXPECT_NE(std::string(e.what()).find("not a ULog file"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ULogReader, ADataMessageOfTheWrongSizeIsAnErrorAtItsOffset) {
+  auto bytes = bytesOf(fixtures() / "sample_px4_events.ulg");
+  // Find the first data message by walking the framing, then grow its declared size by one
+  // and shift the rest: the payload no longer matches its format.
+  std::size_t at = 16;
+  for (;;) {
+    std::uint16_t size = 0;
+    std::memcpy(&size, bytes.data() + at, 2);
+    if (static_cast<char>(bytes[at + 2]) == 'D') {
+      ++size;
+      std::memcpy(bytes.data() + at, &size, 2);
+      bytes.insert(bytes.begin() + static_cast<std::ptrdiff_t>(at + 3), std::byte{0});
+      break;
+    }
+    at += 3 + size;
+  }
+  try {
+    (void)readULog(bytes, "grown.ulg");
+    FAIL() << "no error";
+  } catch (const LogError& e) {
+    EXPECT_EQ(e.offset(), at);
+    EXPECT_NE(std::string(e.what()).find("its format"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ULogReader, AnUnknownMessageTypeSkipsToTheNextSyncMarker) {
+  auto bytes = bytesOf(fixtures() / "sample_px4_events.ulg");
+  const LogData whole = readULog(bytes, "whole");
+  // Corrupt the type byte of a message in the middle.
+  std::size_t at = 16;
+  while (at < bytes.size() / 2) {
+    std::uint16_t size = 0;
+    std::memcpy(&size, bytes.data() + at, 2);
+    at += 3 + size;
+  }
+  bytes[at + 2] = std::byte{'~'};
+  const LogData bad = readULog(bytes, "corrupt.ulg");
+  ASSERT_FALSE(bad.warnings.empty());
+  EXPECT_NE(bad.warnings.front().find("byte " + std::to_string(at)), std::string::npos) << bad.warnings.front();
+  // What follows the next sync marker is read again.
+  EXPECT_GT(bad.topic("sensor_combined")->size(), whole.topic("sensor_combined")->size() / 2 + 100);
+}
+
+TEST(ULogReader, ALogLargerThanAllowedIsRefusedUnread) {
+  geaware::io::LogReadOptions o;
+  o.max_bytes = 1000;
+  try {
+    (void)readULog(fixtures() / "sample_log_small.ulg", o);
+    FAIL() << "no error";
+  } catch (const LogError& e) {
+    EXPECT_NE(std::string(e.what()).find("sample_log_small.ulg"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("refused unread"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW((void)readULog(fixtures() / "no_such.ulg"), LogError);
+  EXPECT_THROW((void)readULog(fixtures()), LogError);  // a directory
+}
+
+}  // namespace
