@@ -16,6 +16,8 @@
 #include "geaware/experiments/identify_report.hpp"
 #include "geaware/ident/identify.hpp"
 #include "geaware/io/json.hpp"
+#include "geaware/io/log_channels.hpp"
+#include "geaware/io/log_map.hpp"
 #include "geaware/io/output_file.hpp"
 #include "geaware/io/provenance.hpp"
 #include "geaware/io/range.hpp"
@@ -40,7 +42,30 @@ struct IdentifyOptions {
   std::string ground_effect = "paper";  ///< paper: the closed forms; table: values at knots
   double table_top_m = 0.5;             ///< automatic F_G knots up to this height [m]
   std::string table_heights;            ///< explicit knots FROM:TO:STEP (empty: automatic)
+  std::string map;                      ///< log map (built-in name or file) for autopilot logs
+  double mass_kg = 0.0;                 ///< vehicle mass [kg]; 0: the base vehicle's
 };
+
+/// A flight log read from an autopilot log (ULog, DataFlash, CSV export) through a log map:
+/// the mapped channels on one time axis in ENU/FLU, a_ext computed by the paper's observer.
+ident::FlightLog readMappedFlight(const IdentifyOptions& opt, const model::VehicleParams& base) {
+  const io::LogMap map = io::loadLogMap(opt.map);
+  std::vector<std::string> wanted = {"height", "specific_force", "attitude", "rotor_speed"};
+  if (!opt.hover) wanted.emplace_back("velocity");
+  io::LogReadOptions read;
+  for (const auto& w : wanted) {
+    if (const auto it = map.channels.find(w); it != map.channels.end()) read.topics.push_back(it->second.topic);
+  }
+  const io::LogData data = io::readLog(opt.log, read);
+  for (const auto& w : data.warnings) std::cerr << "geaware: warning: " << opt.log << ": " << w << "\n";
+  const io::MappedFlight mapped = io::mapFlight(data, map, wanted);
+  ident::MappedFlightLog flight = ident::flightLogFromMapped(mapped, base.mass_kg, base.rotor.k_T_N_per_rpm2);
+  for (const auto& n : mapped.notes) std::cerr << "geaware: note: " << opt.log << ": " << n << "\n";
+  for (const auto& n : flight.notes) std::cerr << "geaware: note: " << opt.log << ": " << n << "\n";
+  std::cerr << "geaware: note: " << opt.log << ": " << flight.log.size() << " samples for the fit, a_ext from the IMU, "
+            << "attitude and rotor speeds with m = " << base.mass_kg << " kg\n";
+  return std::move(flight.log);
+}
 
 /// The --column renames, DEFAULT=ACTUAL, applied to every default name in `names`.
 void renameColumns(const std::vector<std::string>& specs, const std::vector<std::string*>& names) {
@@ -89,6 +114,10 @@ ident::IdentifyResult identify(const IdentifyOptions& opt, const model::VehicleP
   }
   if (opt.kind == "platform") return ident::identifyPlatform(readPlatform(opt), base, io_opt);
   if (opt.kind == "correlations") return ident::identifyCorrelations(readPlatform(opt), base);
+  if (!opt.map.empty()) {
+    const ident::FlightLog log = readMappedFlight(opt, base);
+    return opt.hover ? ident::identifyHover(log, base, io_opt) : ident::identifyFlight(log, base, io_opt);
+  }
   ident::FlightColumns c;
   std::vector<std::string*> names{&c.t, &c.h};
   add(names, c.v), add(names, c.q), add(names, c.a_ext), add(names, c.n);
@@ -162,11 +191,18 @@ int runIdentify(const IdentifyOptions& opt) {
   io::OutputChecks files;
   files.input("LOG", opt.log);
   files.input("--vehicle", opt.vehicle);
+  files.input("--map", opt.map);
   files.output("--out", opt.out, false);
   files.output("--json", opt.json);
   files.directory("--report", opt.report);
   files.check();
-  const model::VehicleParams base = opt.vehicle.empty() ? io::builtinVehicle() : io::loadVehicleFile(opt.vehicle);
+  if (!opt.map.empty() && !opt.columns.empty()) throw UsageError("--column: not with --map (the map names the fields)");
+  if (!opt.map.empty() && opt.vehicle.empty() && opt.mass_kg == 0.0) {
+    throw UsageError("--map: a flight fit on an autopilot log needs the vehicle's mass: --mass-kg M or --vehicle FILE "
+                     "(the built-in paper quadrotor's mass is not taken for another vehicle)");
+  }
+  model::VehicleParams base = opt.vehicle.empty() ? io::builtinVehicle() : io::loadVehicleFile(opt.vehicle);
+  if (opt.mass_kg > 0.0) base.mass_kg = opt.mass_kg;
   ident::IdentifyResult r = identify(opt, base);
   // Human text on stdout, unless stdout carries the JSON.
   (opt.json == "-" ? std::cerr : std::cout) << ident::resultText(r);
@@ -233,7 +269,14 @@ Runner addIdentifyCommand(CLI::App& app) {
     if (name == "platform" || name == "flight") {
       sub->add_option("--height-bands", opts->height_bands, "number of height bands")->check(wholeIn(1, 100))->capture_default_str();
     }
-    if (name == "flight") sub->add_flag("--hover", opts->hover, "the log is a hover descent: fit F_G (eq. 10)");
+    if (name == "flight") {
+      sub->add_flag("--hover", opts->hover, "the log is a hover descent: fit F_G (eq. 10)");
+      sub->add_option("--map", opts->map,
+                      "read an autopilot log (PX4 .ulg, ArduPilot .bin, CSV export) through a log map: a built-in "
+                      "name (px4) or a map file (docs/identification.md, \"Mapping a log\")");
+      sub->add_option("--mass-kg", opts->mass_kg, "the vehicle's mass [kg] (instead of the base vehicle's)")
+          ->check(finiteIn(0.0, 1000.0, true));
+    }
     sub->callback([opts, name = name] { opts->kind = name; });
   }
   return [opts] { return runIdentify(*opts); };

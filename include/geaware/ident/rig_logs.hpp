@@ -108,3 +108,24 @@ struct FlightLog {
                                      const FlightColumns& columns = {});
 
 }  // namespace geaware::ident
+
+namespace geaware::io {
+struct MappedFlight;
+}
+
+namespace geaware::ident {
+
+/// A flight log made from a mapped autopilot log (io::mapFlight: ENU/FLU, SI, one time axis),
+/// with the external acceleration computed as the paper's observer does (eq. 3, unfiltered):
+/// a_ext = R_WB·f_IMU − z_B·k_T·Σn²/m, with the mass and k_T given. Rows where every rotor reads
+/// 0 rpm (on the ground, disarmed) are dropped and counted in `notes`.
+struct MappedFlightLog {
+  FlightLog log;
+  std::vector<std::string> notes;
+};
+/// `flight` must hold height, specific force, attitude and 4 rotor speeds (velocity optional).
+/// Throws std::invalid_argument naming what is missing.
+[[nodiscard]] MappedFlightLog flightLogFromMapped(const io::MappedFlight& flight, double mass_kg,
+                                                  double k_T_N_per_rpm2);
+
+}  // namespace geaware::ident

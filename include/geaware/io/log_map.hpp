@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// Which topic and field of a log is what (issue 11 item 2, the basis): a small YAML file per log
+// family (config/log-maps/NAME.yaml, built in by name: `--map px4`; or any file) naming the
+// topic, fields, unit and frame of the height, specific force, gyro, attitude, velocity, rotor
+// speed and battery voltage; and mapFlight, which takes those channels from a log into SI units,
+// geaware's frames (ENU world, FLU body; PX4 and ArduPilot log NED/FRD) and one time axis.
+// docs/identification.md "Mapping a log".
+
+#include <array>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "geaware/io/log_channels.hpp"
+
+namespace geaware::io {
+
+/// One mapped quantity: `fields` of one topic instance, scaled by `scale` into SI (rpm for rotor
+/// speeds) from `unit`, in `frame` ("scalar", "world", "body", "quaternion" w x y z world from
+/// body, "world_z": a world z coordinate, read as a height).
+struct MappedChannel {
+  std::string topic;
+  unsigned instance = 0;
+  std::vector<std::string> fields;
+  std::string unit;
+  double scale = 1.0;
+  std::string frame = "scalar";
+  int line = 0;  ///< line in the map file
+};
+
+struct LogMap {
+  std::string name;    ///< "px4", or the file's stem
+  std::string source;  ///< the file (or "built-in map px4 (config/log-maps/px4.yaml)")
+  std::string family;
+  std::string frames;  ///< "ned_frd" or "enu_flu"
+  /// height, specific_force, gyro, attitude, velocity, rotor_speed, battery_voltage (any subset).
+  std::map<std::string, MappedChannel> channels;
+};
+
+/// The names of the built-in maps ("px4").
+[[nodiscard]] std::vector<std::string> builtinLogMapNames();
+/// A built-in map by name, or a map file. Throws ConfigError naming the file, the line and the
+/// key (unknown channel, wrong field count, unknown unit or frame), or std::runtime_error for a
+/// name that is neither.
+[[nodiscard]] LogMap loadLogMap(const std::string& name_or_file);
+[[nodiscard]] LogMap parseLogMap(const std::string& text, const std::string& source, const std::string& name);
+
+/// The mapped channels of one log on one time axis, in SI units and geaware's frames.
+struct MappedFlight {
+  std::string source;
+  std::string time_base;                 ///< "esc_status[0]": the slowest channel asked for
+  std::vector<double> t_s;
+  std::vector<double> h_m;
+  std::array<std::vector<double>, 3> f_B_mps2;      ///< specific force, FLU body
+  std::array<std::vector<double>, 3> gyro_B_radps;  ///< FLU body
+  std::array<std::vector<double>, 4> q_WB;          ///< w, x, y, z: ENU world from FLU body
+  std::array<std::vector<double>, 3> v_W_mps;       ///< ENU
+  std::vector<std::vector<double>> n_rpm;           ///< one vector per rotor
+  std::vector<double> vbat_V;
+  std::vector<std::string> notes;        ///< rates, time base, rows dropped
+  [[nodiscard]] std::size_t size() const noexcept { return t_s.size(); }
+};
+
+/// The channels `wanted` (names of LogMap::channels) of `log`: every one sampled at the times of
+/// the slowest of them (linear interpolation, the quaternion normalised; rows outside any
+/// channel's time span or with a NaN are dropped and counted in the notes). Throws LogError
+/// naming the log, the map and the missing channel, topic or field.
+[[nodiscard]] MappedFlight mapFlight(const LogData& log, const LogMap& map, const std::vector<std::string>& wanted);
+
+}  // namespace geaware::io

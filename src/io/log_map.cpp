@@ -1,0 +1,125 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Log map files (io/log_map.hpp): strict YAML, every problem with its line.
+
+#include "geaware/io/log_map.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "builtin_log_maps.hpp"
+#include "geaware/io/input_file.hpp"
+#include "geaware/io/yaml_reader.hpp"
+
+namespace geaware::io {
+namespace {
+
+struct ChannelSpec {
+  const char* name;
+  std::size_t min_fields, max_fields;
+  std::vector<std::string> frames;                  // the first is the default
+  std::vector<std::pair<std::string, double>> units;  // unit → factor into SI; empty: no unit
+};
+
+const std::vector<ChannelSpec>& channelSpecs() {
+  static const std::vector<ChannelSpec> specs = {
+      {"height", 1, 1, {"scalar", "world_z"}, {{"m", 1.0}, {"cm", 1e-2}, {"mm", 1e-3}}},
+      {"specific_force", 3, 3, {"body"}, {{"m/s^2", 1.0}, {"g", 9.80665}, {"mm/s^2", 1e-3}}},
+      {"gyro", 3, 3, {"body"}, {{"rad/s", 1.0}, {"deg/s", 0.017453292519943295}}},
+      {"attitude", 4, 4, {"quaternion"}, {}},
+      {"velocity", 3, 3, {"world"}, {{"m/s", 1.0}, {"mm/s", 1e-3}, {"cm/s", 1e-2}}},
+      {"rotor_speed", 1, 8, {"scalar"}, {{"rpm", 1.0}, {"rad/s", 9.549296585513721}}},
+      {"battery_voltage", 1, 1, {"scalar"}, {{"V", 1.0}, {"mV", 1e-3}}},
+  };
+  return specs;
+}
+
+std::string joined(const std::vector<std::string>& v) {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
+  return s;
+}
+
+MappedChannel readChannel(MapReader& r, const ChannelSpec& spec, const YamlContext& ctx) {
+  MappedChannel c;
+  c.line = ctx.lineOf(r.path());
+  c.topic = r.text("topic");
+  if (r.has("instance")) c.instance = static_cast<unsigned>(r.integer("instance", 0, 255));
+  c.fields = r.texts("fields");
+  if (c.fields.size() < spec.min_fields || c.fields.size() > spec.max_fields) {
+    r.problem("fields", std::to_string(c.fields.size()) + " fields, expected " +
+                            (spec.min_fields == spec.max_fields ? std::to_string(spec.min_fields)
+                                                                : std::to_string(spec.min_fields) + " to " +
+                                                                      std::to_string(spec.max_fields)));
+  }
+  c.frame = r.has("frame") ? r.choice("frame", spec.frames) : spec.frames.front();
+  if (!spec.units.empty()) {
+    std::vector<std::string> names;
+    for (const auto& [u, f] : spec.units) names.push_back(u);
+    c.unit = r.choice("unit", names);
+    for (const auto& [u, f] : spec.units) {
+      if (u == c.unit) c.scale = f;
+    }
+  }
+  r.rejectUnknownKeys();
+  return c;
+}
+
+}  // namespace
+
+std::vector<std::string> builtinLogMapNames() {
+  std::vector<std::string> names;
+  for (const auto& m : detail::kBuiltinLogMaps) names.emplace_back(m.name);
+  return names;
+}
+
+LogMap parseLogMap(const std::string& text, const std::string& source, const std::string& name) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw ConfigError(source, {{e.mark.line + 1, "", "not valid YAML: " + e.msg}});
+  }
+  if (!root.IsMap()) throw ConfigError(source, {{1, "", "expected a map with the keys family, frames, channels"}});
+  YamlContext ctx;
+  MapReader reader(root, "", ctx, root.Mark().line >= 0 ? root.Mark().line + 1 : 1);
+  LogMap map;
+  map.name = name;
+  map.source = source;
+  map.family = reader.text("family");
+  map.frames = reader.choice("frames", {"ned_frd", "enu_flu"});
+  MapReader channels = reader.map("channels");
+  for (const auto& spec : channelSpecs()) {
+    if (!channels.has(spec.name)) continue;
+    MapReader r = channels.map(spec.name);
+    map.channels[spec.name] = readChannel(r, spec, ctx);
+  }
+  if (channels.valid()) {
+    std::vector<std::string> known;
+    for (const auto& spec : channelSpecs()) known.emplace_back(spec.name);
+    if (map.channels.empty() && ctx.problems.empty()) {
+      channels.problem("", "no channel mapped (expected some of: " + joined(known) + ")");
+    }
+    channels.rejectUnknownKeys();
+  }
+  reader.rejectUnknownKeys();
+  if (!ctx.problems.empty()) throw ConfigError(source, std::move(ctx.problems));
+  return map;
+}
+
+LogMap loadLogMap(const std::string& name_or_file) {
+  for (const auto& m : detail::kBuiltinLogMaps) {
+    if (m.name == name_or_file) {
+      return parseLogMap(std::string(m.yaml), "built-in map " + std::string(m.name) + " (" + std::string(m.path) + ")",
+                         std::string(m.name));
+    }
+  }
+  std::error_code ec;
+  if (!std::filesystem::exists(name_or_file, ec)) {
+    throw std::runtime_error("--map '" + name_or_file + "': no such map file and no built-in map of that name (built in: " +
+                             joined(builtinLogMapNames()) + ")");
+  }
+  const std::string text = readInputFile(name_or_file, "log map file", "log map YAML file");
+  return parseLogMap(text, name_or_file, std::filesystem::path(name_or_file).stem().string());
+}
+
+}  // namespace geaware::io

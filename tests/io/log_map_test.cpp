@@ -1,0 +1,111 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Log maps: the file format's errors, the NED/FRD → ENU/FLU conversion on closed-form cases,
+// the time base, and the observer's a_ext on a hover where thrust balances weight.
+
+#include "geaware/io/config_error.hpp"
+#include "geaware/io/log_map.hpp"
+#include "geaware/ident/rig_logs.hpp"
+
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace {
+
+using geaware::io::LogData;
+using geaware::io::Topic;
+
+Topic topic(const std::string& name, double dt, std::size_t n,
+            const std::vector<std::pair<std::string, double>>& constant_fields) {
+  Topic t;
+  t.name = name;
+  for (std::size_t i = 0; i < n; ++i) t.time_s.push_back(10.0 + dt * static_cast<double>(i));
+  for (const auto& [field, value] : constant_fields) {
+    t.channels.push_back({field, "", geaware::io::FieldType::kFloat, std::vector<double>(n, value)});
+  }
+  return t;
+}
+
+const char* kMap = R"(family: test
+frames: ned_frd
+channels:
+  height: {topic: lpos, fields: [z], unit: m, frame: world_z}
+  specific_force: {topic: imu, fields: [ax, ay, az], unit: m/s^2, frame: body}
+  attitude: {topic: att, fields: [qw, qx, qy, qz], frame: quaternion}
+  velocity: {topic: lpos, fields: [vx, vy, vz], unit: mm/s, frame: world}
+  rotor_speed: {topic: esc, fields: [n1, n2, n3, n4], unit: rpm}
+)";
+
+TEST(LogMap, BuiltInPx4MapLoads) {
+  const auto m = geaware::io::loadLogMap("px4");
+  EXPECT_EQ(m.frames, "ned_frd");
+  EXPECT_EQ(m.channels.at("rotor_speed").fields.size(), 4u);
+  EXPECT_EQ(m.channels.at("attitude").topic, "vehicle_attitude");
+  EXPECT_THROW((void)geaware::io::loadLogMap("no_such_map"), std::runtime_error);
+}
+
+TEST(LogMap, ErrorsNameTheLineAndKey) {
+  try {
+    (void)geaware::io::parseLogMap("family: x\nframes: ned_frd\nchannels:\n  hieght: {topic: a, fields: [b]}\n"
+                                   "  gyro: {topic: a, fields: [b, c], unit: deg/s}\n  velocity: {topic: a, fields: [a, b, c], unit: km/h}\n",
+                                   "bad.yaml", "bad");
+    FAIL() << "no error";
+  } catch (const geaware::io::ConfigError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("bad.yaml:4"), std::string::npos) << what;  // unknown channel 'hieght'
+    EXPECT_NE(what.find("hieght"), std::string::npos) << what;
+    EXPECT_NE(what.find("2 fields, expected 3"), std::string::npos) << what;
+    EXPECT_NE(what.find("km/h"), std::string::npos) << what;
+  }
+}
+
+TEST(LogMap, NedFrdBecomesEnuFluOnOneTimeBase) {
+  LogData log;
+  log.source = "synthetic";
+  const double s = std::sqrt(0.5);
+  // Level, nose east: in NED a yaw of +90° about down; in ENU/FLU the identity.
+  log.topics.push_back(topic("att", 0.01, 400, {{"qw", s}, {"qx", 0.0}, {"qy", 0.0}, {"qz", s}}));
+  log.topics.push_back(topic("imu", 0.004, 1000, {{"ax", 0.5}, {"ay", 0.25}, {"az", -9.81}}));
+  log.topics.push_back(topic("lpos", 0.1, 40, {{"z", -1.5}, {"vx", 1000.0}, {"vy", 2000.0}, {"vz", 3000.0}}));
+  log.topics.push_back(topic("esc", 0.25, 16, {{"n1", 5000}, {"n2", 5000}, {"n3", 5000}, {"n4", 5000}}));
+  const auto map = geaware::io::parseLogMap(kMap, "map.yaml", "test");
+  const auto f = geaware::io::mapFlight(log, map, {"height", "specific_force", "attitude", "velocity", "rotor_speed"});
+  EXPECT_EQ(f.time_base, "esc[0]");
+  ASSERT_EQ(f.size(), 16u);  // every esc time lies inside the others' spans (10 … 13.75 s)
+  EXPECT_DOUBLE_EQ(f.t_s[3], 10.75);
+  EXPECT_DOUBLE_EQ(f.h_m[3], 1.5);
+  EXPECT_DOUBLE_EQ(f.f_B_mps2[0][3], 0.5);
+  EXPECT_DOUBLE_EQ(f.f_B_mps2[1][3], -0.25);
+  EXPECT_DOUBLE_EQ(f.f_B_mps2[2][3], 9.81);
+  EXPECT_NEAR(f.v_W_mps[0][3], 2.0, 1e-12);  // mm/s scaled, north/east swapped
+  EXPECT_NEAR(f.v_W_mps[1][3], 1.0, 1e-12);
+  EXPECT_NEAR(f.v_W_mps[2][3], -3.0, 1e-12);
+  EXPECT_NEAR(std::abs(f.q_WB[0][3]), 1.0, 1e-12);
+  for (int k = 1; k < 4; ++k) EXPECT_NEAR(f.q_WB[static_cast<std::size_t>(k)][3], 0.0, 1e-12);
+  EXPECT_THROW((void)geaware::io::mapFlight(log, map, {"gyro"}), geaware::io::LogError);
+}
+
+TEST(LogMap, TheObserverGivesZeroExternalAccelerationInABalancedHover) {
+  geaware::io::MappedFlight f;
+  f.source = "hover";
+  const double m = 1.5, k_T = 2e-8, g = 9.81;
+  const double n = std::sqrt(m * g / (4.0 * k_T));  // Σ k_T n² = m g
+  for (std::size_t i = 0; i < 5; ++i) {
+    f.t_s.push_back(static_cast<double>(i));
+    f.h_m.push_back(1.0);
+    f.f_B_mps2[0].push_back(0.0), f.f_B_mps2[1].push_back(0.0), f.f_B_mps2[2].push_back(g);
+    f.q_WB[0].push_back(1.0), f.q_WB[1].push_back(0.0), f.q_WB[2].push_back(0.0), f.q_WB[3].push_back(0.0);
+  }
+  f.n_rpm.assign(4, std::vector<double>(5, n));
+  f.n_rpm[0][2] = f.n_rpm[1][2] = f.n_rpm[2][2] = f.n_rpm[3][2] = 0.0;  // resting: dropped
+  const auto r = geaware::ident::flightLogFromMapped(f, m, k_T);
+  ASSERT_EQ(r.log.size(), 4u);
+  ASSERT_EQ(r.notes.size(), 1u);
+  for (std::size_t i = 0; i < 4; ++i) EXPECT_NEAR(r.log.a_ext_W[2][i], 0.0, 1e-12);
+  // 10 % more thrust than weight: a_ext = -0.1 g (the observer sees a force pulling down).
+  f.n_rpm.assign(4, std::vector<double>(5, n * std::sqrt(1.1)));
+  EXPECT_NEAR(geaware::ident::flightLogFromMapped(f, m, k_T).log.a_ext_W[2][0], -0.1 * g, 1e-9);
+}
+
+}  // namespace
