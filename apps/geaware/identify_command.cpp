@@ -62,6 +62,7 @@ ident::FlightLog readMappedFlight(const IdentifyOptions& opt, const model::Vehic
   ident::MappedFlightLog flight = ident::flightLogFromMapped(mapped, base.mass_kg, base.rotor.k_T_N_per_rpm2);
   for (const auto& n : mapped.notes) std::cerr << "geaware: note: " << opt.log << ": " << n << "\n";
   for (const auto& n : flight.notes) std::cerr << "geaware: note: " << opt.log << ": " << n << "\n";
+  for (const auto& w : mapped.warnings) std::cerr << "geaware: warning: " << opt.log << ": " << w << "\n";
   std::cerr << "geaware: note: " << opt.log << ": " << flight.log.size() << " samples for the fit, a_ext from the IMU, "
             << "attitude and rotor speeds with m = " << base.mass_kg << " kg\n";
   return std::move(flight.log);

@@ -420,6 +420,20 @@ CsvReader::CsvReader(const std::filesystem::path& file, CsvReadOptions options)
   impl_->readHeader();
 }
 
+CsvReader::CsvReader(std::string_view text, const std::string& source, CsvReadOptions options)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->source = source;
+  impl_->options = std::move(options);
+  // fmemopen refuses a zero-length buffer: an empty text reads as /dev/null does.
+  impl_->file = text.empty() ? std::fopen("/dev/null", "rb")
+                             : fmemopen(const_cast<char*>(text.data()), text.size(), "rb");
+  if (impl_->file == nullptr) {
+    throw CsvError(impl_->source, 0, "", std::string("cannot read from memory: ") + std::strerror(errno));
+  }
+  impl_->buffer.resize(std::max<std::size_t>(impl_->options.buffer_bytes, 64));
+  impl_->readHeader();
+}
+
 CsvReader::~CsvReader() = default;
 CsvReader::CsvReader(CsvReader&&) noexcept = default;
 CsvReader& CsvReader::operator=(CsvReader&&) noexcept = default;

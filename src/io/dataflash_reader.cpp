@@ -115,8 +115,14 @@ class DataFlashParser {
       const auto id = static_cast<unsigned>(h[2]);
       const auto it = types_.find(id);
       if (h[0] != kHead1 || h[1] != kHead2 || (id != kFmtId && it == types_.end())) {
-        if (skipped++ == 0) skip_start = at;
-        src_.skip(1);
+        if (skipped == 0) skip_start = at;
+        // Junk: move to the next 0xA3 at once (a long run is scanned by memchr, not byte by byte).
+        const std::size_t window = static_cast<std::size_t>(std::min<std::uint64_t>(src_.remaining(), 4096));
+        const std::byte* w = src_.peek(window);
+        const void* next = std::memchr(w + 1, 0xa3, window - 1);
+        const std::size_t step = next == nullptr ? window - 1 : static_cast<std::size_t>(static_cast<const std::byte*>(next) - w);
+        skipped += step;
+        src_.skip(step);
         continue;
       }
       if (skipped > 0) {

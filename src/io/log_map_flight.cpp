@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <Eigen/Geometry>
 
@@ -93,6 +94,13 @@ MappedFlight mapFlight(const LogData& log, const LogMap& map, const std::vector<
     const double rate = static_cast<double>(s.topic->size() - 1) / (s.topic->time_s.back() - s.topic->time_s.front());
     out.notes.push_back(s.name + ": " + s.spec->topic + "[" + std::to_string(s.spec->instance) + "], " +
                         std::to_string(s.topic->size()) + " samples at " + std::to_string(rate).substr(0, 6) + " Hz");
+    if (rate < kMinFitRateHz) {
+      char text[64];
+      std::snprintf(text, sizeof text, "%.3g Hz", rate);
+      out.warnings.push_back(s.name + " (" + s.spec->topic + "[" + std::to_string(s.spec->instance) + "]) is logged at " +
+                             text + ", slower than the " + std::to_string(static_cast<int>(kMinFitRateHz)) +
+                             " Hz a fit of the vehicle's motion needs: the fit runs on its samples only");
+    }
     if (s.topic->size() < base->topic->size()) base = &s;
   }
   out.time_base = base->spec->topic + "[" + std::to_string(base->spec->instance) + "]";

@@ -402,7 +402,8 @@ class ULogParser {
       if (type == 'P') {
         log_.parameters[name] = v;
       } else {
-        log_.info[name] = std::to_string(v);
+        log_.info[name] = std::floor(v) == v && std::abs(v) < 9e15 ? std::to_string(static_cast<long long>(v))
+                                                                    : std::to_string(v);
       }
       return;
     }

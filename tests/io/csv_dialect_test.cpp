@@ -102,3 +102,19 @@ TEST_F(CsvDialect, ReadLogTakesEveryColumnAndItsUnits) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(CsvFromMemory, ReadsAsAFileDoes) {
+  CsvReadOptions o;
+  o.columns = {{"t_s"}, {"z"}};
+  geaware::io::CsvReader r(std::string_view("# t_s;z[mm]\n0;1\n1;2\n"), "memory", o);
+  std::vector<double> row(2);
+  ASSERT_TRUE(r.next(row));
+  ASSERT_TRUE(r.next(row));
+  EXPECT_EQ(row[1], 2.0);
+  EXPECT_FALSE(r.next(row));
+  EXPECT_THROW(geaware::io::CsvReader(std::string_view(""), "empty", o), CsvError);
+}
+
+}  // namespace

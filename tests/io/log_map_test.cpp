@@ -83,6 +83,9 @@ TEST(LogMap, NedFrdBecomesEnuFluOnOneTimeBase) {
   EXPECT_NEAR(f.v_W_mps[2][3], -3.0, 1e-12);
   EXPECT_NEAR(std::abs(f.q_WB[0][3]), 1.0, 1e-12);
   for (int k = 1; k < 4; ++k) EXPECT_NEAR(f.q_WB[static_cast<std::size_t>(k)][3], 0.0, 1e-12);
+  // Below 20 Hz: the height and velocity (10 Hz) and the rotor speeds (4 Hz) are named.
+  ASSERT_EQ(f.warnings.size(), 3u);
+  EXPECT_NE(f.warnings[2].find("rotor_speed (esc[0]) is logged at 4 Hz"), std::string::npos) << f.warnings[2];
   EXPECT_THROW((void)geaware::io::mapFlight(log, map, {"gyro"}), geaware::io::LogError);
 }
 

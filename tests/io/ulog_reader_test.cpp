@@ -243,3 +243,36 @@ TEST(ULogReader, ALogLargerThanAllowedIsRefusedUnread) {
 }
 
 }  // namespace
+
+namespace {
+
+// Data appended after a cut (PX4 writes it after a crash, flag bit DATA_APPENDED): the message
+// cut short at the appended offset is skipped and reading resumes there.
+TEST(ULogReader, DataAppendedAfterACutMessageIsRead) {
+  const auto bytes = bytesOf(fixtures() / "sample_px4_events.ulg");
+  const LogData whole = readULog(bytes, "whole");
+  ASSERT_EQ(static_cast<char>(bytes[18]), 'B');  // flag bits first, as the format requires
+  std::size_t at = 16;
+  while (at < bytes.size() / 2) {
+    std::uint16_t size = 0;
+    std::memcpy(&size, bytes.data() + at, 2);
+    at += 3 + size;
+  }
+  // The first 5 bytes of the message at `at`, cut; then the rest of the file again from `at`.
+  std::vector<std::byte> cut(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(at + 5));
+  cut.insert(cut.end(), bytes.begin() + static_cast<std::ptrdiff_t>(at), bytes.end());
+  cut[16 + 3 + 8] = std::byte{1};  // incompat_flags[0]: data appended
+  const std::uint64_t appended = at + 5;
+  std::memcpy(cut.data() + 16 + 3 + 16, &appended, 8);
+  const LogData read = readULog(cut, "appended.ulg");
+  ASSERT_EQ(read.warnings.size(), 1u);
+  EXPECT_NE(read.warnings[0].find("appended data at byte " + std::to_string(appended)), std::string::npos)
+      << read.warnings[0];
+  ASSERT_EQ(read.topics.size(), whole.topics.size());
+  for (std::size_t i = 0; i < whole.topics.size(); ++i) EXPECT_EQ(read.topics[i].time_s, whole.topics[i].time_s);
+  // Without the flag bit the same bytes are corrupt, and other incompatible bits are refused.
+  cut[16 + 3 + 8] = std::byte{2};
+  EXPECT_THROW((void)readULog(cut, "unknown-flags.ulg"), LogError);
+}
+
+}  // namespace

@@ -70,6 +70,9 @@ class CsvReader {
  public:
   /// Opens the file and checks the header; throws CsvError.
   CsvReader(const std::filesystem::path& file, CsvReadOptions options);
+  /// Reads `text` (not copied: it must outlive the reader), named `source` in messages (for
+  /// tests and fuzzing); throws CsvError.
+  CsvReader(std::string_view text, const std::string& source, CsvReadOptions options);
   ~CsvReader();
   CsvReader(const CsvReader&) = delete;
   CsvReader& operator=(const CsvReader&) = delete;

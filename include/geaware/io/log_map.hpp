@@ -60,8 +60,14 @@ struct MappedFlight {
   std::vector<std::vector<double>> n_rpm;           ///< one vector per rotor
   std::vector<double> vbat_V;
   std::vector<std::string> notes;        ///< rates, time base, rows dropped
+  /// Channels logged slower than kMinFitRateHz (each named with its rate).
+  std::vector<std::string> warnings;
   [[nodiscard]] std::size_t size() const noexcept { return t_s.size(); }
 };
+
+/// A mapped channel logged slower than this [Hz] is named in MappedFlight::warnings: a quadrotor's
+/// thrust and attitude change within tenths of a second, so a fit sampled slower sees them aliased.
+inline constexpr double kMinFitRateHz = 20.0;
 
 /// The channels `wanted` (names of LogMap::channels) of `log`: every one sampled at the times of
 /// the slowest of them (linear interpolation, the quaternion normalised; rows outside any
