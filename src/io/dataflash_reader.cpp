@@ -355,11 +355,24 @@ class DataFlashParser {
   // Messages of one type whose instance field differs become separate topic instances.
   void splitInstances(Topic& topic, std::size_t channel) {
     const std::vector<double> ids = topic.channels[channel].values;
+    if (std::any_of(ids.begin(), ids.end(), [](double v) { return std::isnan(v); })) {
+      warn(0, topic.name + "." + topic.channels[channel].name + ": a NaN instance number: not split into instances");
+      return;
+    }
     std::vector<double> distinct = ids;
     std::sort(distinct.begin(), distinct.end());
     distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
     if (distinct.size() <= 1) {
-      topic.instance = distinct.empty() || !(distinct[0] >= 0.0) ? 0u : static_cast<unsigned>(distinct[0]);
+      topic.instance = distinct.size() == 1 && distinct[0] >= 0.0 && distinct[0] < 256.0 ? static_cast<unsigned>(distinct[0]) : 0u;
+      return;
+    }
+    // ArduPilot numbers instances 0, 1, 2, …: anything else (or more than 16) is not split.
+    constexpr std::size_t kMaxInstances = 16;
+    const bool small = distinct.size() <= kMaxInstances &&
+                       std::all_of(distinct.begin(), distinct.end(), [](double v) { return v >= 0.0 && v < 256.0 && std::floor(v) == v; });
+    if (!small) {
+      warn(0, topic.name + "." + topic.channels[channel].name + ": " + std::to_string(distinct.size()) +
+                  " distinct instance numbers (expected at most 16 whole numbers in [0, 255]): not split into instances");
       return;
     }
     const Topic whole = std::move(topic);

@@ -134,6 +134,8 @@ class ULogParser {
   std::size_t dropped_warnings_ = 0;
   std::size_t flatten_steps_ = 0;  // per subscription
   static constexpr std::size_t kMaxFlattenSteps = 0x10000;
+  std::size_t fields_subscribed_ = 0;
+  static constexpr std::size_t kMaxFieldsSubscribed = std::size_t{1} << 20;
 
   void warn(std::uint64_t at, const std::string& message) {
     if (log_.warnings.size() >= kMaxULogWarnings) {
@@ -318,7 +320,14 @@ class ULogParser {
     s.name = std::string(asText(p + 3, n - 3));
     std::vector<Channel> channels;
     flatten_steps_ = 0;
+    // Bounded memory: a 4-byte subscription may flatten to 65,535 fields, so a hostile file of
+    // subscriptions would multiply its size by ~10^5; real logs hold about 10^4 fields in all.
+    if (fields_subscribed_ > kMaxFieldsSubscribed) {
+      src_.fail(at, "more than " + std::to_string(kMaxFieldsSubscribed) + " fields subscribed in all (a real log holds "
+                    "about 10^4): refused");
+    }
     s.bytes = flatten(s.name, "", 0, 0, channels, s.leaves, at);
+    fields_subscribed_ += s.leaves.size();
     // Trailing padding is not logged (and pyulog drops it).
     while (!channels.empty() && channels.back().name.starts_with("_padding")) {
       s.bytes = s.leaves.back().offset;

@@ -188,4 +188,20 @@ TEST(DataFlashReader, BadFilesAreErrorsNamingTheFileAndOffset) {
   expectError(l.bytes, 89, "2 format characters");
 }
 
+TEST(DataFlashReader, AnInstanceFieldWithManyValuesIsNotSplit) {
+  Writer w;
+  w.fmt(128, 89, "FMT", "BBnNZ", "Type,Length,Name,Format,Columns");
+  w.fmt(129, 3 + 8 + 1 + 64, "UNIT", "QbZ", "TimeUS,Id,Label");
+  w.fmt(131, 3 + 8 + 1 + 16 + 16, "FMTU", "QBNN", "TimeUS,FmtType,UnitIds,MultIds");
+  w.fmt(136, 3 + 8 + 4, "INS", "QI", "TimeUS,I");
+  w.head(129).put<std::uint64_t>(0).put(static_cast<std::int8_t>('#')).text("instance", 64);
+  w.fmtu(0, 136, "-#", "--");
+  for (std::uint32_t i = 0; i < 40; ++i) w.head(136).put<std::uint64_t>(i).put(i * 1000u);
+  const LogData log = readDataFlash(w.bytes, "ins.bin");
+  ASSERT_NE(log.topic("INS"), nullptr);
+  EXPECT_EQ(log.topic("INS")->size(), 40u);
+  ASSERT_EQ(log.warnings.size(), 1u);
+  EXPECT_NE(log.warnings[0].find("40 distinct instance numbers"), std::string::npos) << log.warnings[0];
+}
+
 }  // namespace

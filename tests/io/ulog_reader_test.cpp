@@ -276,3 +276,34 @@ TEST(ULogReader, DataAppendedAfterACutMessageIsRead) {
 }
 
 }  // namespace
+
+namespace {
+
+void message(std::vector<std::byte>& b, char type, const std::string& payload) {
+  const auto size = static_cast<std::uint16_t>(payload.size());
+  b.push_back(static_cast<std::byte>(size & 0xff));
+  b.push_back(static_cast<std::byte>(size >> 8));
+  b.push_back(static_cast<std::byte>(type));
+  for (const char c : payload) b.push_back(static_cast<std::byte>(c));
+}
+
+// Memory is bounded: each 4-byte subscription of a 65,001-field format would cost ~5 MB.
+TEST(ULogReader, SubscriptionsOfMoreThanAMillionFieldsAreRefused) {
+  std::vector<std::byte> b;
+  for (const int c : {0x55, 0x4c, 0x6f, 0x67, 0x01, 0x12, 0x35, 0x01}) b.push_back(static_cast<std::byte>(c));
+  for (int i = 0; i < 8; ++i) b.push_back(std::byte{0});
+  message(b, 'B', std::string(40, '\0'));
+  message(b, 'F', "big:uint64_t timestamp;uint8_t[65000] x;");
+  for (int id = 0; id < 20; ++id) {
+    std::string sub = {'\0', static_cast<char>(id), '\0'};
+    message(b, 'A', sub + "big");
+  }
+  try {
+    (void)readULog(b, "many.ulg");
+    FAIL() << "no error";
+  } catch (const LogError& e) {
+    EXPECT_NE(std::string(e.what()).find("fields subscribed in all"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
