@@ -23,6 +23,7 @@
 #include "geaware/experiments/campaign_summary.hpp"
 #include "geaware/experiments/robustness.hpp"
 #include "geaware/experiments/world_setup.hpp"
+#include "geaware/io/controller_params_file.hpp"
 #include "geaware/io/output_file.hpp"
 #include "geaware/io/truth_file.hpp"
 #include "geaware/io/vehicle_file.hpp"
@@ -37,6 +38,7 @@ struct BenchOptions {
   std::vector<std::string> controllers;  ///< robustness: the configurations (empty: all)
   std::string vehicle;
   std::string truth;
+  std::string controller_params;  ///< --controller-params FILE (empty: the compiled defaults)
   int seeds = 5;
   std::uint64_t first_seed = 1;
   std::vector<std::string> only;
@@ -88,6 +90,7 @@ std::string checkFiles(const BenchOptions& o) {
   io::OutputChecks files;
   files.input("--vehicle", o.vehicle);
   files.input("--truth", truthInputFile(o.truth));
+  files.input("--controller-params", o.controller_params);
   files.output("--json", o.json);
   files.directory("--report", o.report);
   if (!o.no_cache && !o.cache.empty()) files.directory("--cache", o.cache);
@@ -119,6 +122,7 @@ int runRobustnessSuite(const BenchOptions& o) {
     c.controllers = pick(c.controllers, o.controllers, "--controllers",
                          [](const experiments::SuiteController& k) { return k.name; });
   }
+  if (!o.controller_params.empty()) c.controller_values = io::loadControllerParamsFile(o.controller_params);
   c.seeds = o.seeds;
   c.first_seed = o.first_seed;
   c.jobs = o.jobs;
@@ -127,7 +131,7 @@ int runRobustnessSuite(const BenchOptions& o) {
   c.progress = &progress;
   const experiments::RobustnessResult r = experiments::runRobustness(c);
   progress.end();
-  const io::RunInfo run = runInfo(r.seeds, {o.vehicle, truthInputFile(o.truth)});
+  const io::RunInfo run = runInfo(r.seeds, {o.vehicle, truthInputFile(o.truth), o.controller_params});
   std::FILE* human = o.json == "-" ? stderr : stdout;
   fmt::print(human, "{}\nworld: {}\n{}", commandLine(), c.world->source,
              experiments::formatRobustness(r));
@@ -158,6 +162,7 @@ int runBench(const BenchOptions& o) {
   c.vehicle = o.vehicle.empty() ? io::builtinVehicle() : io::loadVehicleFile(o.vehicle);
   c.world = o.truth.empty() ? experiments::defaultWorld(c.vehicle, o.vehicle.empty(), o.vehicle)
                             : io::resolveTruth(o.truth, {});
+  if (!o.controller_params.empty()) c.controller_values = io::loadControllerParamsFile(o.controller_params);
   c.seeds = o.seeds;
   c.first_seed = o.first_seed;
   c.jobs = o.jobs;
@@ -182,7 +187,7 @@ int runBench(const BenchOptions& o) {
   progress.end();
   std::vector<std::uint64_t> seeds;
   for (int k = 0; k < o.seeds; ++k) seeds.push_back(o.first_seed + static_cast<std::uint64_t>(k));
-  const io::RunInfo run = runInfo(seeds, {o.vehicle, truthInputFile(o.truth)});
+  const io::RunInfo run = runInfo(seeds, {o.vehicle, truthInputFile(o.truth), o.controller_params});
 
   std::FILE* human = o.json == "-" ? stderr : stdout;
   fmt::print(human, "{}\n", commandLine());
@@ -233,6 +238,10 @@ Runner addBenchCommand(CLI::App& app) {
                    "vehicle YAML file (default: the built-in paper quadrotor); the controller gets it "
                    "with the parameters identified on the virtual rigs; without --truth the world is "
                    "its ideal world");
+  cmd->add_option("--controller-params", o->controller_params,
+                  "controller-parameters YAML file (docs/controller-params.md): its gains, rate, "
+                  "cut-off and limits in every configuration flown, and its additions' settings "
+                  "where a configuration switches them on (default: the compiled defaults)");
   addTruthOption(cmd, o->truth,
                  "the world the rigs and flights run in: a truth file (docs/truth-file.md; any "
                  "vehicle file is one) or a built-in world (ideal, as_built) (default: as_built with "

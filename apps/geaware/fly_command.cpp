@@ -23,6 +23,7 @@
 #include "geaware/experiments/flight_summary.hpp"
 #include "geaware/experiments/scenario_file.hpp"
 #include "geaware/experiments/world_setup.hpp"
+#include "geaware/io/controller_params_file.hpp"
 #include "geaware/io/output_file.hpp"
 #include "geaware/io/truth_file.hpp"
 #include "geaware/io/vehicle_file.hpp"
@@ -33,6 +34,7 @@ namespace {
 
 struct FlyOptions {
   std::string scenario, vehicle, truth, trajectory, controller, out, json, report, neural_weights;
+  std::string controller_params;  ///< --controller-params FILE (empty: the compiled defaults)
   double height_m = std::nan("");
   double speed_mps = std::nan("");
   double extent_x_m = 1.5;
@@ -96,6 +98,9 @@ experiments::FlightScenario scenarioOf(const FlyOptions& o) {
     s.seed = o.seed;
     if (o.no_turbulence) s.disturbances.turbulence = false;
   }
+  if (!o.controller_params.empty()) {
+    s.controller = io::withControllerParamsFile(s.controller, o.controller_params);
+  }
   if (std::isfinite(o.yaw_rate_gain)) s.controller.k_w_per_s.z() = o.yaw_rate_gain;
   s.start_hover_s = o.start_hover_s;
   if (!std::isnan(o.max_sim_s)) s.max_sim_s = o.max_sim_s;
@@ -130,6 +135,7 @@ void checkFiles(const FlyOptions& o) {
   files.input("--vehicle", o.vehicle);
   files.input("--truth", truthInputFile(o.truth));
   files.input("--neural-weights", o.neural_weights);
+  files.input("--controller-params", o.controller_params);
   files.output("--out", o.out, false);
   files.output("--json", o.json);
   files.directory("--report", o.report);
@@ -152,7 +158,8 @@ int runFly(const FlyOptions& o) {
   checkFiles(o);
   checkDuration(s);
   const io::RunInfo run =
-      runInfo({s.seed}, {o.scenario, o.vehicle, truthInputFile(o.truth), o.neural_weights});
+      runInfo({s.seed}, {o.scenario, o.vehicle, truthInputFile(o.truth), o.neural_weights,
+                         o.controller_params});
   experiments::ObserverList observers;
   std::unique_ptr<experiments::CsvFlightLog> log;
   if (!o.out.empty()) {
@@ -175,6 +182,7 @@ int runFly(const FlyOptions& o) {
   std::FILE* human = o.json == "-" ? stderr : stdout;
   std::string variations = o.truth.empty() ? "" : ", truth " + o.truth;
   if (o.no_turbulence) variations += ", no turbulence";
+  if (!o.controller_params.empty()) variations += ", controller parameters " + o.controller_params;
   if (std::isfinite(o.yaw_rate_gain)) variations += fmt::format(", K^ω_z = {}/s", o.yaw_rate_gain);
   for (const auto& a : o.ablate) variations += ", truth without " + a;
   fmt::print(human, "{}, seed {}{}\n{}", title(o, s), s.seed, variations, experiments::formatFlight(r));
@@ -220,6 +228,11 @@ void addFlightOptions(CLI::App* cmd, FlyOptions& o) {
 }
 
 void addOutputOptions(CLI::App* cmd, FlyOptions& o) {
+  cmd->add_option("--controller-params", o.controller_params,
+                  "controller-parameters YAML file (docs/controller-params.md): gains, rate, "
+                  "filter cut-off, limits and the settings of the additions --controller switches "
+                  "on; replaces a scenario file's controller_params (default: the compiled "
+                  "defaults, config/controller-params/default.yaml)");
   cmd->add_option("--yaw-rate-gain", o.yaw_rate_gain,
                   "override K^ω_z, the controller's yaw-rate gain (default: the paper's 16) "
                   "[1/s]; see docs/closed-loop.md on the yaw channel")

@@ -29,7 +29,7 @@ typedef enum geaware_status {
   GEAWARE_ERROR_NULL_ARGUMENT = 1,      /**< a required pointer was NULL */
   GEAWARE_ERROR_INVALID_VEHICLE = 2,    /**< a vehicle value out of range (message names it) */
   GEAWARE_ERROR_INVALID_CONFIGURATION = 3, /**< unknown configuration name or bad controller value */
-  GEAWARE_ERROR_FILE = 4,               /**< the vehicle file cannot be read or is malformed */
+  GEAWARE_ERROR_FILE = 4,               /**< a vehicle or controller-parameters file cannot be read or is malformed */
   GEAWARE_ERROR_INTERNAL = 5            /**< anything else (message says what) */
 } geaware_status;
 
@@ -134,6 +134,17 @@ geaware_status geaware_controller_create_from_file(const char* vehicle_file,
                                                    const char* configuration, double rate_hz,
                                                    geaware_controller** controller,
                                                    char* message, size_t message_size);
+
+/** The same with a controller-parameters file (YAML, docs/controller-params.md): the gains,
+ *  rate, filter cut-off, limits and the settings of the additions `configuration` switches on
+ *  are the file's. `vehicle_file` NULL: the built-in paper quadrotor; `controller_params_file`
+ *  NULL: the compiled defaults (config/controller-params/default.yaml). `rate_hz` 0: the
+ *  file's loop.rate_hz; otherwise it replaces it. Errors name the file and key. */
+geaware_status geaware_controller_create_from_files(const char* vehicle_file,
+                                                    const char* controller_params_file,
+                                                    const char* configuration, double rate_hz,
+                                                    geaware_controller** controller,
+                                                    char* message, size_t message_size);
 
 /** One control step. No allocation, no exception; NULL pointers give
  *  GEAWARE_ERROR_NULL_ARGUMENT and leave `output` untouched. */

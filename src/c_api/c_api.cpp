@@ -9,9 +9,12 @@
 #include <exception>
 #include <memory>
 #include <new>
+#include <optional>
 #include <string>
 
 #include "geaware/control/controller.hpp"
+#include "geaware/control/controller_schema.hpp"
+#include "geaware/io/controller_params_file.hpp"
 #include "geaware/estimation/disturbance_observer.hpp"
 #include "geaware/io/vehicle_file.hpp"
 #include "geaware/model/field_check.hpp"
@@ -89,7 +92,7 @@ struct Failure {
 };
 
 geaware_controller* build(const model::VehicleParams& vehicle, const char* configuration,
-                          double rate_hz) {
+                          double rate_hz, const control::ControllerParams* values = nullptr) {
   if (const auto errors = vehicle.validate(); !errors.empty()) {
     throw Failure{GEAWARE_ERROR_INVALID_VEHICLE,
                   model::describeErrors("geaware: the vehicle is not usable:", errors)};
@@ -104,6 +107,7 @@ geaware_controller* build(const model::VehicleParams& vehicle, const char* confi
                       "TORQUE in none|model|indi|model_indi (neural needs a trained network, "
                       "which the C interface does not take)"};
   }
+  if (values != nullptr) params = control::applyParameters(params, *values);
   if (rate_hz != 0.0) params.rate_hz = rate_hz;
   if (const auto errors = params.validate(); !errors.empty()) {
     throw Failure{GEAWARE_ERROR_INVALID_CONFIGURATION,
@@ -117,25 +121,38 @@ geaware_controller* build(const model::VehicleParams& vehicle, const char* confi
   return new geaware_controller(model, params, observer);
 }
 
+/// The vehicle file, or the built-in vehicle for NULL; a file problem is GEAWARE_ERROR_FILE.
+model::VehicleParams loadVehicle(const char* file) {
+  try {
+    return file == nullptr ? io::builtinVehicle() : io::loadVehicleFile(file);
+  } catch (const std::exception& e) {
+    throw Failure{GEAWARE_ERROR_FILE, e.what()};
+  }
+}
+
 geaware_status create(const model::VehicleParams* vehicle, const char* file,
                       const char* configuration, double rate_hz, geaware_controller** out,
-                      char* message, std::size_t size) noexcept {
+                      char* message, std::size_t size,
+                      const char* params_file = nullptr) noexcept {
   if (out == nullptr) {
     say(message, size, "geaware: the controller pointer is NULL");
     return GEAWARE_ERROR_NULL_ARGUMENT;
   }
   *out = nullptr;
   try {
-    if (vehicle != nullptr) {
-      *out = build(*vehicle, configuration, rate_hz);
-    } else {
-      model::VehicleParams loaded;
+    std::optional<control::ControllerParams> values;
+    if (params_file != nullptr) {
       try {
-        loaded = io::loadVehicleFile(file);
+        values = io::loadControllerParamsFile(params_file);
       } catch (const std::exception& e) {
         throw Failure{GEAWARE_ERROR_FILE, e.what()};
       }
-      *out = build(loaded, configuration, rate_hz);
+    }
+    const control::ControllerParams* v = values ? &*values : nullptr;
+    if (vehicle != nullptr) {
+      *out = build(*vehicle, configuration, rate_hz, v);
+    } else {
+      *out = build(loadVehicle(file), configuration, rate_hz, v);
     }
     say(message, size, "");
     return GEAWARE_OK;
@@ -171,7 +188,7 @@ const char* geaware_status_string(geaware_status status) {
     case GEAWARE_ERROR_INVALID_CONFIGURATION:
       return "invalid configuration";
     case GEAWARE_ERROR_FILE:
-      return "vehicle file error";
+      return "file error";
     case GEAWARE_ERROR_INTERNAL:
       return "internal error";
   }
@@ -243,6 +260,15 @@ geaware_status geaware_controller_create_from_file(const char* vehicle_file,
     return GEAWARE_ERROR_NULL_ARGUMENT;
   }
   return create(nullptr, vehicle_file, configuration, rate_hz, controller, message, message_size);
+}
+
+geaware_status geaware_controller_create_from_files(const char* vehicle_file,
+                                                    const char* controller_params_file,
+                                                    const char* configuration, double rate_hz,
+                                                    geaware_controller** controller,
+                                                    char* message, size_t message_size) {
+  return create(nullptr, vehicle_file, configuration, rate_hz, controller, message, message_size,
+                controller_params_file);
 }
 
 geaware_status geaware_controller_update(geaware_controller* c,

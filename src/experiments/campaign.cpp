@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "geaware/control/controller_schema.hpp"
 #include "geaware/experiments/flight_pool.hpp"
 #include "geaware/experiments/world_setup.hpp"
 #include "geaware/io/json.hpp"
@@ -94,7 +95,7 @@ FlightPlan planFlights(const CampaignOptions& o, const FlightScenario& base,
     for (std::size_t s = 0; s < seeds.size(); ++s) {
       FlightScenario f = base;
       f.trajectory = trajectory;
-      f.controller = e.controller();
+      f.controller = control::applyParameters(e.controller(), o.controller_values);
       if (e.acceleration == control::AccelerationCompensation::kNeural) f.residual = r.neural->network;
       f.seed = seeds[s];
       plan.add(std::move(f), o.collect_series && s == 0,
@@ -108,7 +109,7 @@ FlightPlan planFlights(const CampaignOptions& o, const FlightScenario& base,
     for (std::size_t s = 0; s < seeds.size(); ++s) {
       FlightScenario f = base;
       f.trajectory = trajectory;
-      f.controller = o.hover_settings.controller;
+      f.controller = control::applyParameters(o.hover_settings.controller, o.controller_values);
       f.controller.torque = torque;
       f.hover_bins = hoverBinning(o.hover_settings);
       f.seed = seeds[s];
@@ -147,6 +148,7 @@ FlightScenario baseScenario(const CampaignOptions& o, const sim::World& world) {
   applyWorld(base, world);
   if (!o.turbulence) base.disturbances.turbulence = false;
   base.start_hover_s = o.start_hover_s;
+  base.controller = control::applyParameters(base.controller, o.controller_values);
   return base;
 }
 
@@ -168,7 +170,9 @@ CampaignResult runCampaign(const CampaignOptions& o) {
       "the scale, a hover flight and two drag flights");
   auto t0 = Clock::now();
   FlightScenario base = baseScenario(o, world);
-  r.calibration = calibrateController(o.vehicle, {base, world.team_scale_error_std_kg}, o.calibration);
+  CalibrationSweeps sweeps = o.calibration;
+  sweeps.flight_controller = control::applyParameters(sweeps.flight_controller, o.controller_values);
+  r.calibration = calibrateController(o.vehicle, {base, world.team_scale_error_std_kg}, sweeps);
   base.vehicle = r.calibration.vehicle;
   base.eskf = r.calibration.estimator;
   r.calibration_s = since(t0);

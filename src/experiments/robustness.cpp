@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "geaware/control/controller_schema.hpp"
 #include "geaware/experiments/flight_pool.hpp"
 #include "geaware/experiments/table_one.hpp"
 #include "geaware/experiments/world_setup.hpp"
@@ -257,12 +258,14 @@ CalibratedWorld calibrate(const RobustnessOptions& o, const std::string& name,
   say(fmt::format("calibration ({}): virtual platform and rotor stand on the truth, the scale, "
                   "hover and drag flights", name));
   auto t0 = Clock::now();
-  w.calibration.calibration =
-      calibrateController(o.vehicle, {world, scale_error_std_kg}, o.calibration);
+  CalibrationSweeps sweeps = o.calibration;
+  sweeps.flight_controller = control::applyParameters(sweeps.flight_controller, o.controller_values);
+  w.calibration.calibration = calibrateController(o.vehicle, {world, scale_error_std_kg}, sweeps);
   r.calibration_s += since(t0);
   w.base = world;
   w.base.vehicle = w.calibration.calibration.vehicle;
   w.base.eskf = w.calibration.calibration.estimator;
+  w.base.controller = control::applyParameters(w.base.controller, o.controller_values);
   if (fliesNeural(o)) {
     t0 = Clock::now();
     NeuralSettings neural = o.neural;
@@ -336,7 +339,7 @@ RobustnessResult runRobustness(const RobustnessOptions& o) {
           FlightScenario f = w.base;
           applyPerturbation(p, f);
           f.trajectory = trajectory;
-          f.controller = c.params;
+          f.controller = control::applyParameters(c.params, o.controller_values);
           if (c.params.acceleration == control::AccelerationCompensation::kNeural) {
             f.residual = w.calibration.neural->network;
           }

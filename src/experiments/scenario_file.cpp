@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "geaware/io/input_file.hpp"
+#include "geaware/io/controller_params_file.hpp"
 #include "geaware/io/format_version.hpp"
 #include "geaware/experiments/world_setup.hpp"
 #include "geaware/io/height_map_file.hpp"
@@ -206,6 +207,18 @@ FlightScenario parseScenarioYaml(std::string_view yaml_text, const std::string& 
     if (!acc.empty()) (void)control::parse(acc, s.controller.acceleration);
     if (!torque.empty()) (void)control::parse(torque, s.controller.torque);
     ctrl.rejectUnknownKeys();
+  }
+  if (root.has("controller_params")) {
+    // The gains, rate, limits and additions' settings (docs/controller-params.md), applied to
+    // the configuration above.
+    const std::string file = root.text("controller_params");
+    if (!file.empty()) {
+      try {
+        s.controller = io::withControllerParamsFile(s.controller, resolve(base_dir, file));
+      } catch (const std::exception& e) {
+        root.problem("controller_params", std::string("cannot use the controller-parameters file: ") + e.what());
+      }
+    }
   }
 
   auto terrain = root.map("terrain");

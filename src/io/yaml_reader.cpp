@@ -3,6 +3,7 @@
 
 #include "text.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -13,6 +14,37 @@ namespace geaware::io {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// Levenshtein distance, for the nearest valid key of an unknown one.
+std::size_t keyEditDistance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+/// The known key nearest to `key` when it is a plausible misspelling (at most a third of its
+/// characters edited), else empty.
+std::string nearestKey(const std::string& key, const std::set<std::string>& known) {
+  std::string best;
+  std::size_t best_d = key.size() / 3 + 1;
+  for (const auto& k : known) {
+    const std::size_t d = keyEditDistance(key, k);
+    if (d < best_d) {
+      best_d = d;
+      best = k;
+    }
+  }
+  return best;
+}
 
 int lineOfNode(const YAML::Node& n) { return n.Mark().line >= 0 ? n.Mark().line + 1 : 0; }
 
@@ -405,7 +437,10 @@ void MapReader::rejectUnknownKeys() {
     if (!read_.contains(key)) {
       std::string known;
       for (const auto& k : read_) known += (known.empty() ? "" : ", ") + k;
-      ctx_.problem(lineOfNode(kv.first), pathOf(key), "unknown key (expected one of: " + known + ")");
+      const std::string nearest = nearestKey(key, read_);
+      ctx_.problem(lineOfNode(kv.first), pathOf(key),
+                   "unknown key (" + (nearest.empty() ? "" : "did you mean '" + nearest + "'? ") +
+                       "expected one of: " + known + ")");
     }
   }
 }

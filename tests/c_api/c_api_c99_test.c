@@ -159,6 +159,20 @@ int main(int argc, char** argv) {
   CHECK(geaware_controller_create_from_file(NULL, NULL, 0.0, &ctl, msg, sizeof msg) ==
             GEAWARE_ERROR_NULL_ARGUMENT, "NULL file name");
 
+  /* With a controller-parameters file (argv[2], the shipped defaults): created; a file that is
+   * not one (the vehicle file) is refused as a file error naming the file and its missing keys. */
+  if (argc > 2) {
+    CHECK(geaware_controller_create_from_files(NULL, argv[2], "recommended", 0.0, &ctl, msg,
+                                               sizeof msg) == GEAWARE_OK, msg);
+    geaware_controller_destroy(ctl);
+    CHECK(geaware_controller_create_from_files(argv[1], argv[1], "recommended", 0.0, &ctl, msg,
+                                               sizeof msg) == GEAWARE_ERROR_FILE &&
+              ctl == NULL && strstr(msg, "paper_quad.yaml") != NULL && strstr(msg, "is missing") != NULL, msg);
+  }
+  CHECK(geaware_controller_create_from_files(NULL, "no/such/params.yaml", NULL, 0.0, &ctl, msg,
+                                             sizeof msg) == GEAWARE_ERROR_FILE &&
+            strstr(msg, "no/such/params.yaml") != NULL, msg);
+
   /* A small message buffer is filled and terminated, never overrun. */
   {
     char small[8];
@@ -166,7 +180,7 @@ int main(int argc, char** argv) {
     geaware_controller_create(&v, "best", 0.0, &ctl, small, sizeof small);
     CHECK(small[7] == '\0' && strlen(small) == 7, "message truncated and terminated");
   }
-  CHECK(strcmp(geaware_status_string(GEAWARE_ERROR_FILE), "vehicle file error") == 0, "status");
+  CHECK(strcmp(geaware_status_string(GEAWARE_ERROR_FILE), "file error") == 0, "status");
 
   if (failures == 0) printf("c_api: all checks passed\n");
   return failures == 0 ? 0 : 1;

@@ -63,6 +63,11 @@ struct CampaignOptions {
   double start_hover_s = 3.0;
   CalibrationSweeps calibration = CalibrationSweeps::defaults();
   NeuralSettings neural;
+  /// The values of a controller-parameters file (`--controller-params`,
+  /// docs/controller-params.md), applied to every configuration flown (control::applyParameters:
+  /// the calibration's, the Neural-Lander's collection flights', each row's); empty: the
+  /// compiled defaults.
+  std::optional<control::ControllerParams> controller_values;
   HoverSettings hover_settings;
   /// Collect decimated time series of each experiment's and hover curve's first seed (for the
   /// report).

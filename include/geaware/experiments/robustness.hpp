@@ -114,6 +114,11 @@ struct RobustnessOptions {
   double start_hover_s = 3.0;       ///< as the campaign (CampaignOptions::start_hover_s) [s]
   CalibrationSweeps calibration = CalibrationSweeps::defaults();
   NeuralSettings neural;
+  /// The values of a controller-parameters file (`--controller-params`,
+  /// docs/controller-params.md), applied to every configuration flown (control::applyParameters:
+  /// the calibration's, the Neural-Lander's collection flights', each row's); empty: the
+  /// compiled defaults.
+  std::optional<control::ControllerParams> controller_values;
   Progress* progress = nullptr;  ///< stages and the flight counter; null: silent
 };
 
