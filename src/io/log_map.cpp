@@ -4,6 +4,7 @@
 #include "geaware/io/log_map.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "builtin_log_maps.hpp"
@@ -25,7 +26,7 @@ const std::vector<ChannelSpec>& channelSpecs() {
       {"height", 1, 1, {"scalar", "world_z"}, {{"m", 1.0}, {"cm", 1e-2}, {"mm", 1e-3}}},
       {"specific_force", 3, 3, {"body"}, {{"m/s^2", 1.0}, {"g", 9.80665}, {"mm/s^2", 1e-3}}},
       {"gyro", 3, 3, {"body"}, {{"rad/s", 1.0}, {"deg/s", 0.017453292519943295}}},
-      {"attitude", 4, 4, {"quaternion"}, {}},
+      {"attitude", 3, 4, {"quaternion", "euler"}, {}},
       {"velocity", 3, 3, {"world"}, {{"m/s", 1.0}, {"mm/s", 1e-3}, {"cm/s", 1e-2}}},
       {"rotor_speed", 1, 8, {"scalar"}, {{"rpm", 1.0}, {"rad/s", 9.549296585513721}}},
       {"battery_voltage", 1, 1, {"scalar"}, {{"V", 1.0}, {"mV", 1e-3}}},
@@ -45,6 +46,23 @@ MappedChannel readChannel(MapReader& r, const ChannelSpec& spec, const YamlConte
   c.topic = r.text("topic");
   if (r.has("instance")) c.instance = static_cast<unsigned>(r.integer("instance", 0, 255));
   c.fields = r.texts("fields");
+  c.field_instances.assign(c.fields.size(), c.instance);
+  if (r.has("instances")) {
+    std::vector<unsigned> instances;
+    for (const double v : r.finiteNumbers("instances")) {
+      if (v < 0.0 || v > 255.0 || std::floor(v) != v) {
+        r.problem("instances", "expected whole numbers in [0, 255]");
+        break;
+      }
+      instances.push_back(static_cast<unsigned>(v));
+    }
+    if (c.fields.size() != 1) {
+      r.problem("instances", "with instances, give one field (taken from each instance)");
+    } else {
+      c.fields.assign(instances.size(), c.fields.front());
+      c.field_instances = instances;
+    }
+  }
   if (c.fields.size() < spec.min_fields || c.fields.size() > spec.max_fields) {
     r.problem("fields", std::to_string(c.fields.size()) + " fields, expected " +
                             (spec.min_fields == spec.max_fields ? std::to_string(spec.min_fields)
@@ -52,6 +70,15 @@ MappedChannel readChannel(MapReader& r, const ChannelSpec& spec, const YamlConte
                                                                       std::to_string(spec.max_fields)));
   }
   c.frame = r.has("frame") ? r.choice("frame", spec.frames) : spec.frames.front();
+  const std::size_t expected = c.frame == "euler" ? 3 : c.frame == "quaternion" ? 4 : 0;
+  if (expected > 0 && c.fields.size() != expected) {
+    r.problem("fields", std::to_string(c.fields.size()) + " fields, a " + c.frame + " attitude has " +
+                            std::to_string(expected));
+  }
+  if (c.frame == "euler") {
+    c.unit = r.choice("unit", {"deg", "rad"});
+    c.scale = c.unit == "deg" ? 0.017453292519943295 : 1.0;
+  }
   if (!spec.units.empty()) {
     std::vector<std::string> names;
     for (const auto& [u, f] : spec.units) names.push_back(u);

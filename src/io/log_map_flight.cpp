@@ -12,10 +12,10 @@
 namespace geaware::io {
 namespace {
 
-// One mapped channel as read: its topic's time axis and its fields, scaled.
+// One mapped channel as read: each field with the topic instance it comes from, scaled.
 struct Series {
   std::string name;
-  const Topic* topic = nullptr;
+  std::vector<const Topic*> topics;  // per field
   std::vector<const Channel*> fields;
   const MappedChannel* spec = nullptr;
 };
@@ -27,20 +27,29 @@ Series find(const LogData& log, const LogMap& map, const std::string& name) {
                                    "', which this fit needs");
   }
   const MappedChannel& c = it->second;
-  Series s{name, log.topic(c.topic, c.instance), {}, &c};
+  Series s{name, {}, {}, &c};
   const std::string where = " (" + name + " in " + map.source + (c.line > 0 ? ":" + std::to_string(c.line) : "") + ")";
-  if (s.topic == nullptr) {
-    throw LogError(log.source, "no topic '" + c.topic + "' instance " + std::to_string(c.instance) + where);
-  }
-  if (s.topic->size() < 2) {
-    throw LogError(log.source, "topic '" + c.topic + "' has " + std::to_string(s.topic->size()) + " samples" + where);
-  }
-  for (const auto& f : c.fields) {
-    const Channel* ch = s.topic->channel(f);
-    if (ch == nullptr) throw LogError(log.source, "topic '" + c.topic + "' has no field '" + f + "'" + where);
+  for (std::size_t k = 0; k < c.fields.size(); ++k) {
+    const unsigned instance = k < c.field_instances.size() ? c.field_instances[k] : c.instance;
+    const Topic* topic = log.topic(c.topic, instance);
+    if (topic == nullptr) {
+      throw LogError(log.source, "no topic '" + c.topic + "' instance " + std::to_string(instance) + where);
+    }
+    if (topic->size() < 2) {
+      throw LogError(log.source, "topic '" + c.topic + "' has " + std::to_string(topic->size()) + " samples" + where);
+    }
+    const Channel* ch = topic->channel(c.fields[k]);
+    if (ch == nullptr) throw LogError(log.source, "topic '" + c.topic + "' has no field '" + c.fields[k] + "'" + where);
+    s.topics.push_back(topic);
     s.fields.push_back(ch);
   }
   return s;
+}
+
+std::string topicName(const Topic& t) { return t.name + "[" + std::to_string(t.instance) + "]"; }
+
+double rateOf(const Topic& t) {
+  return static_cast<double>(t.size() - 1) / (t.time_s.back() - t.time_s.front());
 }
 
 // Linear interpolation of `v` over `t` (increasing) at `x`; NaN outside [t.front(), t.back()].
@@ -55,11 +64,15 @@ struct Cursor {
   }
 };
 
-double interpolate(const std::vector<double>& t, const std::vector<double>& v, std::size_t k, double x) {
+// `period` > 0: an angle, interpolated the short way round (a yaw from 359° to 1°).
+double interpolate(const std::vector<double>& t, const std::vector<double>& v, std::size_t k, double x,
+                   double period = 0.0) {
   const double t0 = t[k], t1 = t[k + 1];
   if (!(t1 > t0)) return v[k];
   const double a = (x - t0) / (t1 - t0);
-  return v[k] + a * (v[k + 1] - v[k]);
+  double d = v[k + 1] - v[k];
+  if (period > 0.0) d -= period * std::round(d / period);
+  return v[k] + a * d;
 }
 
 // NED → ENU for world vectors, FRD → FLU for body vectors, and the quaternion between them.
@@ -81,6 +94,14 @@ void toEnuFlu(const std::string& frame, std::vector<double>& x) {
   }
 }
 
+// Roll, pitch, yaw [rad] → the quaternion w, x, y, z of R = Rz(yaw)·Ry(pitch)·Rx(roll).
+void eulerToQuaternion(std::vector<double>& x) {
+  const Eigen::Quaterniond e = Eigen::AngleAxisd(x[2], Eigen::Vector3d::UnitZ()) *
+                               Eigen::AngleAxisd(x[1], Eigen::Vector3d::UnitY()) *
+                               Eigen::AngleAxisd(x[0], Eigen::Vector3d::UnitX());
+  x = {e.w(), e.x(), e.y(), e.z()};
+}
+
 }  // namespace
 
 MappedFlight mapFlight(const LogData& log, const LogMap& map, const std::vector<std::string>& wanted) {
@@ -88,42 +109,50 @@ MappedFlight mapFlight(const LogData& log, const LogMap& map, const std::vector<
   for (const auto& name : wanted) series.push_back(find(log, map, name));
   MappedFlight out;
   out.source = log.source;
-  // The time base: the slowest channel (interpolating it onto a faster one would invent data).
-  const Series* base = &series.front();
+  // The time base: the slowest topic (interpolating it onto a faster one would invent data).
+  const Topic* base = series.front().topics.front();
   for (const auto& s : series) {
-    const double rate = static_cast<double>(s.topic->size() - 1) / (s.topic->time_s.back() - s.topic->time_s.front());
-    out.notes.push_back(s.name + ": " + s.spec->topic + "[" + std::to_string(s.spec->instance) + "], " +
-                        std::to_string(s.topic->size()) + " samples at " + std::to_string(rate).substr(0, 6) + " Hz");
-    if (rate < kMinFitRateHz) {
+    std::vector<const Topic*> seen;
+    for (const Topic* t : s.topics) {
+      if (std::find(seen.begin(), seen.end(), t) != seen.end()) continue;
+      seen.push_back(t);
+      const double rate = rateOf(*t);
       char text[64];
-      std::snprintf(text, sizeof text, "%.3g Hz", rate);
-      out.warnings.push_back(s.name + " (" + s.spec->topic + "[" + std::to_string(s.spec->instance) + "]) is logged at " +
-                             text + ", slower than the " + std::to_string(static_cast<int>(kMinFitRateHz)) +
-                             " Hz a fit of the vehicle's motion needs: the fit runs on its samples only");
+      std::snprintf(text, sizeof text, "%.4g Hz", rate);
+      out.notes.push_back(s.name + ": " + topicName(*t) + ", " + std::to_string(t->size()) + " samples at " + text);
+      if (rate < kMinFitRateHz) {
+        out.warnings.push_back(s.name + " (" + topicName(*t) + ") is logged at " + text + ", slower than the " +
+                               std::to_string(static_cast<int>(kMinFitRateHz)) +
+                               " Hz a fit of the vehicle's motion needs: the fit runs on its samples only");
+      }
+      if (rate < rateOf(*base)) base = t;
     }
-    if (s.topic->size() < base->topic->size()) base = &s;
   }
-  out.time_base = base->spec->topic + "[" + std::to_string(base->spec->instance) + "]";
+  out.time_base = topicName(*base);
   out.notes.push_back("time base: " + out.time_base + " (the slowest channel; the others are interpolated linearly)");
-  std::vector<Cursor> cursors;
-  for (const auto& s : series) cursors.push_back({s.topic->time_s});
+  std::vector<std::vector<Cursor>> cursors(series.size());
+  for (std::size_t k = 0; k < series.size(); ++k) {
+    for (const Topic* t : series[k].topics) cursors[k].push_back({t->time_s});
+  }
   const bool convert = map.frames == "ned_frd";
   std::size_t outside = 0, with_nan = 0;
   std::vector<std::vector<double>> row(series.size());
-  for (const double t : base->topic->time_s) {
+  for (const double t : base->time_s) {
     bool ok = true, finite = true;
     for (std::size_t k = 0; k < series.size() && ok; ++k) {
       const Series& s = series[k];
-      const std::size_t at = cursors[k].locate(t);
-      if (at == SIZE_MAX) {
-        ok = false;
-        break;
-      }
+      const double period = s.spec->frame == "euler" ? 2.0 * M_PI / s.spec->scale : 0.0;
       row[k].resize(s.fields.size());
-      for (std::size_t f = 0; f < s.fields.size(); ++f) {
-        row[k][f] = interpolate(s.topic->time_s, s.fields[f]->values, at, t) * s.spec->scale;
+      for (std::size_t f = 0; f < s.fields.size() && ok; ++f) {
+        const std::size_t at = cursors[k][f].locate(t);
+        if (at == SIZE_MAX) {
+          ok = false;
+          break;
+        }
+        row[k][f] = interpolate(s.topics[f]->time_s, s.fields[f]->values, at, t, period) * s.spec->scale;
         finite = finite && std::isfinite(row[k][f]);
       }
+      if (!ok) break;
       if (s.spec->frame == "quaternion") {
         double norm = 0.0;
         for (const double q : row[k]) norm += q * q;
@@ -131,7 +160,9 @@ MappedFlight mapFlight(const LogData& log, const LogMap& map, const std::vector<
         for (double& q : row[k]) q /= norm;
         finite = finite && norm > 0.5;
       }
-      if (convert || s.spec->frame == "world_z") toEnuFlu(s.spec->frame, row[k]);
+      const bool euler = s.spec->frame == "euler";
+      if (euler) eulerToQuaternion(row[k]);
+      if (convert || s.spec->frame == "world_z") toEnuFlu(euler ? "quaternion" : s.spec->frame, row[k]);
     }
     if (!ok) {
       ++outside;

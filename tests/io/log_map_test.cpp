@@ -112,3 +112,53 @@ TEST(LogMap, TheObserverGivesZeroExternalAccelerationInABalancedHover) {
 }
 
 }  // namespace
+
+namespace {
+
+// The ArduPilot map on channels laid out as ArduPilot logs them: Euler angles in degrees (yaw
+// wrapping through 360°), one ESC message type per motor instance, NED/FRD.
+TEST(LogMap, ArduPilotEulerAnglesAndPerMotorInstances) {
+  const auto map = geaware::io::loadLogMap("ardupilot");
+  LogData log;
+  log.source = "synthetic.bin";
+  auto att = topic("ATT", 0.1, 3, {{"Roll", 0.0}, {"Pitch", 0.0}, {"Yaw", 0.0}});
+  att.channels[2].values = {89.0, 91.0, 93.0};  // about nose east (yaw 90° in NED)
+  log.topics.push_back(att);
+  auto wrap = topic("ATT", 0.1, 3, {{"Roll", 0.0}, {"Pitch", 0.0}, {"Yaw", 0.0}});
+  for (unsigned m = 0; m < 4; ++m) {
+    auto esc = topic("ESC", 0.1, 3, {{"RPM", 4000.0 + 100.0 * m}});
+    esc.instance = m;
+    log.topics.push_back(esc);
+  }
+  auto imu = topic("IMU", 0.01, 30, {{"AccX", 0.0}, {"AccY", 0.0}, {"AccZ", -9.81}});
+  log.topics.push_back(imu);
+  log.topics.push_back(topic("RFND", 0.01, 30, {{"Dist", 0.42}}));
+  const auto f = geaware::io::mapFlight(log, map, {"height", "specific_force", "attitude", "rotor_speed"});
+  ASSERT_EQ(f.size(), 3u);
+  EXPECT_EQ(f.time_base, "ATT[0]");  // ATT and ESC both at 10 Hz: the first of them asked for
+  ASSERT_EQ(f.n_rpm.size(), 4u);
+  EXPECT_DOUBLE_EQ(f.n_rpm[3][1], 4300.0);
+  EXPECT_DOUBLE_EQ(f.h_m[0], 0.42);
+  EXPECT_DOUBLE_EQ(f.f_B_mps2[2][0], 9.81);
+  // Yaw 91° NED (nose 1° south of east) at t = 10.1 s: in ENU a yaw of −1°.
+  const double half = -0.5 * 1.0 * M_PI / 180.0;
+  EXPECT_NEAR(std::abs(f.q_WB[0][1]), std::cos(half), 1e-12);
+  EXPECT_NEAR(f.q_WB[3][1] * (f.q_WB[0][1] > 0 ? 1.0 : -1.0), std::sin(half), 1e-12);
+  // The yaw interpolated the short way round through 360°: 359° and 1° give 0° half way.
+  wrap.channels[2].values = {359.0, 1.0, 3.0};
+  log.topics[0] = wrap;
+  for (std::size_t m = 1; m <= 4; ++m) {  // the ESCs at 5 Hz, the time base, from 10.05 s
+    log.topics[m].time_s = {10.05, 10.25};
+    log.topics[m].channels[0].values.resize(2);
+  }
+  const auto g = geaware::io::mapFlight(log, map, {"attitude", "rotor_speed"});
+  // ESC at 10.05 s lies half way between the ATT samples 359° and 1°: yaw 0° NED = north, in
+  // ENU a yaw of +90°; at 10.25 s the attitude has ended (dropped, noted).
+  ASSERT_EQ(g.time_base, "ESC[0]");
+  ASSERT_EQ(g.size(), 1u);
+  EXPECT_NEAR(std::abs(g.q_WB[0][0]), std::cos(M_PI / 4.0), 1e-12);
+  EXPECT_NEAR(std::abs(g.q_WB[3][0]), std::sin(M_PI / 4.0), 1e-12);
+  EXPECT_GT(g.q_WB[0][0] * g.q_WB[3][0], 0.0);
+}
+
+}  // namespace

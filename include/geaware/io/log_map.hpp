@@ -17,13 +17,17 @@
 
 namespace geaware::io {
 
-/// One mapped quantity: `fields` of one topic instance, scaled by `scale` into SI (rpm for rotor
-/// speeds) from `unit`, in `frame` ("scalar", "world", "body", "quaternion" w x y z world from
-/// body, "world_z": a world z coordinate, read as a height).
+/// One mapped quantity: `fields` of one topic, scaled by `scale` into SI (rpm for rotor speeds,
+/// rad for Euler angles) from `unit`, in `frame` ("scalar", "world", "body", "quaternion" w x y z
+/// world from body, "euler": roll, pitch, yaw of the body in the world (z-y-x), "world_z": a
+/// world z coordinate, read as a height).
 struct MappedChannel {
   std::string topic;
   unsigned instance = 0;
   std::vector<std::string> fields;
+  /// The topic instance of each field (same length as fields): `instance` for all, or, with
+  /// `instances: [0, 1, 2, 3]` and one field, that field of each instance (ArduPilot's ESC).
+  std::vector<unsigned> field_instances;
   std::string unit;
   double scale = 1.0;
   std::string frame = "scalar";
