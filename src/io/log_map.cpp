@@ -114,6 +114,13 @@ LogMap parseLogMap(const std::string& text, const std::string& source, const std
   map.source = source;
   map.family = reader.text("family");
   map.frames = reader.choice("frames", {"ned_frd", "enu_flu"});
+  if (reader.has("time")) {
+    MapReader time = reader.map("time");
+    map.time_field = time.text("field");
+    const std::string unit = time.choice("unit", {"s", "ms", "us"});
+    map.time_scale = unit == "s" ? 1.0 : unit == "ms" ? 1e-3 : 1e-6;
+    time.rejectUnknownKeys();
+  }
   MapReader channels = reader.map("channels");
   for (const auto& spec : channelSpecs()) {
     if (!channels.has(spec.name)) continue;

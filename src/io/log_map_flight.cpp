@@ -2,7 +2,9 @@
 // mapFlight (io/log_map.hpp): mapped channels onto one time axis, in SI units and ENU/FLU.
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <map>
 #include <cstdio>
 
 #include <Eigen/Geometry>
@@ -48,8 +50,39 @@ Series find(const LogData& log, const LogMap& map, const std::string& name) {
 
 std::string topicName(const Topic& t) { return t.name + "[" + std::to_string(t.instance) + "]"; }
 
-double rateOf(const Topic& t) {
-  return static_cast<double>(t.size() - 1) / (t.time_s.back() - t.time_s.front());
+// The time axis of each topic used: its own, or the map's time field scaled (a CSV export whose
+// `timestamp` is in ms, not the µs readLog assumes).
+class TimeAxes {
+ public:
+  TimeAxes(const LogMap& map, const std::string& source) : map_(map), source_(source) {}
+  const std::vector<double>& of(const Topic& t) {
+    if (map_.time_field.empty()) return t.time_s;
+    auto it = axes_.find(&t);
+    if (it != axes_.end()) return it->second;
+    const Channel* c = nullptr;
+    for (const auto& ch : t.channels) {
+      if (lowered(ch.name) == lowered(map_.time_field)) c = &ch;
+    }
+    if (c == nullptr) {
+      throw LogError(source_, "topic '" + t.name + "' has no time field '" + map_.time_field + "' (time in " + map_.source + ")");
+    }
+    std::vector<double> axis(c->values);
+    for (auto& v : axis) v *= map_.time_scale;
+    return axes_.emplace(&t, std::move(axis)).first->second;
+  }
+
+ private:
+  static std::string lowered(std::string s) {
+    for (auto& ch : s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    return s;
+  }
+  const LogMap& map_;
+  std::string source_;
+  std::map<const Topic*, std::vector<double>> axes_;
+};
+
+double rateOf(const std::vector<double>& t) {
+  return static_cast<double>(t.size() - 1) / (t.back() - t.front());
 }
 
 // Linear interpolation of `v` over `t` (increasing) at `x`; NaN outside [t.front(), t.back()].
@@ -110,13 +143,14 @@ MappedFlight mapFlight(const LogData& log, const LogMap& map, const std::vector<
   MappedFlight out;
   out.source = log.source;
   // The time base: the slowest topic (interpolating it onto a faster one would invent data).
+  TimeAxes axes(map, log.source);
   const Topic* base = series.front().topics.front();
   for (const auto& s : series) {
     std::vector<const Topic*> seen;
     for (const Topic* t : s.topics) {
       if (std::find(seen.begin(), seen.end(), t) != seen.end()) continue;
       seen.push_back(t);
-      const double rate = rateOf(*t);
+      const double rate = rateOf(axes.of(*t));
       char text[64];
       std::snprintf(text, sizeof text, "%.4g Hz", rate);
       out.notes.push_back(s.name + ": " + topicName(*t) + ", " + std::to_string(t->size()) + " samples at " + text);
@@ -125,19 +159,20 @@ MappedFlight mapFlight(const LogData& log, const LogMap& map, const std::vector<
                                std::to_string(static_cast<int>(kMinFitRateHz)) +
                                " Hz a fit of the vehicle's motion needs: the fit runs on its samples only");
       }
-      if (rate < rateOf(*base)) base = t;
+      if (rate < rateOf(axes.of(*base))) base = t;
     }
   }
   out.time_base = topicName(*base);
   out.notes.push_back("time base: " + out.time_base + " (the slowest channel; the others are interpolated linearly)");
   std::vector<std::vector<Cursor>> cursors(series.size());
   for (std::size_t k = 0; k < series.size(); ++k) {
-    for (const Topic* t : series[k].topics) cursors[k].push_back({t->time_s});
+    for (const Topic* t : series[k].topics) cursors[k].push_back({axes.of(*t)});
   }
   const bool convert = map.frames == "ned_frd";
   std::size_t outside = 0, with_nan = 0;
   std::vector<std::vector<double>> row(series.size());
-  for (const double t : base->time_s) {
+  const std::vector<double> base_times = axes.of(*base);
+  for (const double t : base_times) {
     bool ok = true, finite = true;
     for (std::size_t k = 0; k < series.size() && ok; ++k) {
       const Series& s = series[k];
@@ -149,7 +184,7 @@ MappedFlight mapFlight(const LogData& log, const LogMap& map, const std::vector<
           ok = false;
           break;
         }
-        row[k][f] = interpolate(s.topics[f]->time_s, s.fields[f]->values, at, t, period) * s.spec->scale;
+        row[k][f] = interpolate(cursors[k][f].t, s.fields[f]->values, at, t, period) * s.spec->scale;
         finite = finite && std::isfinite(row[k][f]);
       }
       if (!ok) break;
@@ -162,7 +197,7 @@ MappedFlight mapFlight(const LogData& log, const LogMap& map, const std::vector<
       }
       const bool euler = s.spec->frame == "euler";
       if (euler) eulerToQuaternion(row[k]);
-      if (convert || s.spec->frame == "world_z") toEnuFlu(euler ? "quaternion" : s.spec->frame, row[k]);
+      if (convert) toEnuFlu(euler ? "quaternion" : s.spec->frame, row[k]);  // world_z: ENU z is the height
     }
     if (!ok) {
       ++outside;

@@ -7,6 +7,8 @@
 #include "geaware/ident/rig_logs.hpp"
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -159,6 +161,38 @@ TEST(LogMap, ArduPilotEulerAnglesAndPerMotorInstances) {
   EXPECT_NEAR(std::abs(g.q_WB[0][0]), std::cos(M_PI / 4.0), 1e-12);
   EXPECT_NEAR(std::abs(g.q_WB[3][0]), std::sin(M_PI / 4.0), 1e-12);
   EXPECT_GT(g.q_WB[0][0] * g.q_WB[3][0], 0.0);
+}
+
+}  // namespace
+
+namespace {
+
+// The Crazyflie map on a CSV export as its logging framework writes it: Timestamp in ms, acc in
+// g, ENU/FLU already (no conversion, the height not negated).
+TEST(LogMap, CrazyflieCsvExportInMillisecondsAndG) {
+  const auto dir = std::filesystem::path(::testing::TempDir()) / "geaware_log_map_cf";
+  std::filesystem::create_directories(dir);
+  const auto file = dir / "cf.csv";
+  {
+    std::ofstream out(file);
+    out << "Timestamp,stateEstimate.z,acc.x,acc.y,acc.z,stateEstimate.qw,stateEstimate.qx,stateEstimate.qy,"
+           "stateEstimate.qz,rpm.m1,rpm.m2,rpm.m3,rpm.m4,pm.vbatMV\n";
+    for (int i = 0; i < 50; ++i) {
+      out << 1000 + 10 * i << "," << 0.05 + 0.001 * i << ",0.01,-0.02,1.0,1,0,0,0,15000,15100,15200,15300,3900\n";
+    }
+  }
+  const auto log = geaware::io::readLog(file);
+  const auto map = geaware::io::loadLogMap("crazyflie");
+  const auto f = geaware::io::mapFlight(log, map, {"height", "specific_force", "attitude", "rotor_speed", "battery_voltage"});
+  ASSERT_EQ(f.size(), 50u);
+  EXPECT_DOUBLE_EQ(f.t_s[1], 1.01);                   // ms → s
+  EXPECT_TRUE(f.warnings.empty());                   // 100 Hz
+  EXPECT_DOUBLE_EQ(f.h_m[2], 0.052);                 // up, not negated
+  EXPECT_DOUBLE_EQ(f.f_B_mps2[2][0], 9.80665);       // g → m/s²
+  EXPECT_DOUBLE_EQ(f.f_B_mps2[1][0], -0.02 * 9.80665);  // FLU kept
+  EXPECT_DOUBLE_EQ(f.n_rpm[3][0], 15300.0);
+  EXPECT_DOUBLE_EQ(f.vbat_V[0], 3.9);
+  EXPECT_DOUBLE_EQ(f.q_WB[0][0], 1.0);
 }
 
 }  // namespace

@@ -39,6 +39,10 @@ struct LogMap {
   std::string source;  ///< the file (or "built-in map px4 (config/log-maps/px4.yaml)")
   std::string family;
   std::string frames;  ///< "ned_frd" or "enu_flu"
+  /// A field (name matched without case) that is the time of every mapped topic, and its scale
+  /// to seconds (`time: {field: timestamp, unit: ms}`); empty: the reader's time axes.
+  std::string time_field;
+  double time_scale = 1.0;
   /// height, specific_force, gyro, attitude, velocity, rotor_speed, battery_voltage (any subset).
   std::map<std::string, MappedChannel> channels;
 };
