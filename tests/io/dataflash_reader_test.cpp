@@ -7,6 +7,7 @@
 // with FMTU multipliers and units applied, text fields left out, instances split.
 
 #include "geaware/io/log_channels.hpp"
+#include "geaware/io/log_map.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -202,6 +203,53 @@ TEST(DataFlashReader, AnInstanceFieldWithManyValuesIsNotSplit) {
   EXPECT_EQ(log.topic("INS")->size(), 40u);
   ASSERT_EQ(log.warnings.size(), 1u);
   EXPECT_NE(log.warnings[0].find("40 distinct instance numbers"), std::string::npos) << log.warnings[0];
+}
+
+// The whole chain on a log laid out as ArduPilot writes these messages (ATT's centidegree 'c'/'C'
+// fields with multiplier B, ESC's 'e' RPM, one ESC instance per motor, FMTU instance fields):
+// the reader splits and scales, the ardupilot map converts NED/FRD Euler angles to ENU/FLU.
+TEST(DataFlashReader, ThroughTheArduPilotMap) {
+  Writer w;
+  w.fmt(128, 89, "FMT", "BBnNZ", "Type,Length,Name,Format,Columns");
+  w.fmt(129, 3 + 8 + 1 + 64, "UNIT", "QbZ", "TimeUS,Id,Label");
+  w.fmt(130, 3 + 8 + 1 + 8, "MULT", "Qbd", "TimeUS,Id,Mult");
+  w.fmt(131, 3 + 8 + 1 + 16 + 16, "FMTU", "QBNN", "TimeUS,FmtType,UnitIds,MultIds");
+  w.fmt(140, 3 + 8 + 1 + 24, "IMU", "QBffffff", "TimeUS,I,GyrX,GyrY,GyrZ,AccX,AccY,AccZ");
+  w.fmt(141, 3 + 8 + 4 * 2 + 2 * 2, "ATT", "QccccCC", "TimeUS,DesRoll,Roll,DesPitch,Pitch,DesYaw,Yaw");
+  w.fmt(142, 3 + 8 + 1 + 4, "RFND", "QBf", "TimeUS,Instance,Dist");
+  w.fmt(143, 3 + 8 + 1 + 4 + 4 + 4, "ESC", "QBeef", "TimeUS,Instance,RPM,RawRPM,Volt");
+  for (const auto& [id, label] : std::vector<std::pair<char, std::string>>{
+           {'s', "s"}, {'#', "instance"}, {'E', "rad/s"}, {'o', "m/s/s"}, {'d', "deg"}, {'m', "m"}, {'q', "rpm"}, {'v', "V"}}) {
+    w.head(129).put<std::uint64_t>(0).put(static_cast<std::int8_t>(id)).text(label, 64);
+  }
+  for (const auto& [id, mult] : std::vector<std::pair<char, double>>{{'F', 1e-6}, {'0', 1.0}, {'B', 1e-2}}) {
+    w.head(130).put<std::uint64_t>(0).put(static_cast<std::int8_t>(id)).put(mult);
+  }
+  w.fmtu(0, 140, "s#EEEooo", "F-000000");
+  w.fmtu(0, 141, "sdddddd", "FBBBBBB");
+  w.fmtu(0, 142, "s#m", "F-0");
+  w.fmtu(0, 143, "s#qqv", "F-BB0");
+  for (std::uint64_t i = 0; i < 40; ++i) {
+    const std::uint64_t t = 1000000 + 25000 * i;  // 40 Hz
+    w.head(140).put(t).put<std::uint8_t>(0).put(0.0f).put(0.0f).put(0.0f).put(0.0f).put(0.0f).put(-9.81f);
+    w.head(141).put(t).put<std::int16_t>(0).put<std::int16_t>(0).put<std::int16_t>(0).put<std::int16_t>(0);
+    w.put<std::uint16_t>(9000).put<std::uint16_t>(9000);  // yaw 90.00°: nose east
+    w.head(142).put(t).put<std::uint8_t>(0).put(0.3f);
+    for (std::uint8_t m = 0; m < 4; ++m) {
+      w.head(143).put(t + m).put(m).put<std::int32_t>(450000 + 100 * m).put<std::int32_t>(0).put(15.9f);
+    }
+  }
+  const LogData log = readDataFlash(w.bytes, "ap.bin");
+  ASSERT_TRUE(log.warnings.empty()) << log.warnings.front();
+  ASSERT_NE(log.topic("ESC", 3), nullptr);
+  const auto map = geaware::io::loadLogMap("ardupilot");
+  const auto f = geaware::io::mapFlight(log, map, {"height", "specific_force", "attitude", "rotor_speed"});
+  ASSERT_GE(f.size(), 38u);
+  EXPECT_NEAR(f.n_rpm[0][5], 4500.0, 1e-9);  // 'e' with multiplier B: ÷100 once
+  EXPECT_NEAR(f.n_rpm[3][5], 4503.0, 1e-9);
+  EXPECT_NEAR(f.h_m[5], 0.3, 1e-6);
+  EXPECT_NEAR(f.f_B_mps2[2][5], 9.81, 1e-6);
+  EXPECT_NEAR(std::abs(f.q_WB[0][5]), 1.0, 1e-9);  // nose east in NED = yaw 0 in ENU
 }
 
 }  // namespace
