@@ -80,7 +80,11 @@ model::HeightGrid readHeightMapFile(const std::string& path) {
     if (what.starts_with(prefix)) throw HeightMapFileError(path, 0, 0, what.substr(prefix.size()));
     throw;  // "<path>:<line>: line longer than 1 MiB …"
   }
-  std::istringstream in(std::move(bytes));
+  return parseHeightMapText(bytes, path);
+}
+
+model::HeightGrid parseHeightMapText(std::string_view bytes, const std::string& path) {
+  std::istringstream in{std::string(bytes)};
   std::optional<double> origin_x;
   std::optional<double> origin_y;
   std::optional<double> cell;

@@ -4,6 +4,7 @@
 #include "geaware/io/height_map_file.hpp"
 
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,10 @@ TEST_F(HeightMapFile, LoadsAGrid) {
   const std::string path = write(
       "good.csv", std::string(kHeader) + "0.0, 0.1, 0.2\n\n0.5, 0.6, 0.7\n# a comment\n1, 1, +1\n");
   const HeightGrid g = readHeightMapFile(path);
+  const HeightGrid m = geaware::io::parseHeightMapText(
+      std::string(kHeader) + "0.0, 0.1, 0.2\n\n0.5, 0.6, 0.7\n# a comment\n1, 1, +1\n", "memory");
+  EXPECT_EQ(m.heights, g.heights);
+  EXPECT_EQ(m.cell_m, g.cell_m);
   EXPECT_EQ(g.origin_x_m, -1.0);
   EXPECT_EQ(g.origin_y_m, 2.0);
   EXPECT_EQ(g.cell_m, 0.5);
@@ -37,12 +42,23 @@ TEST_F(HeightMapFile, LoadsAGrid) {
   EXPECT_EQ(g.heights, expected);
 }
 
-/// Expects readHeightMapFile(path) to throw a HeightMapFileError at line/column whose message names the file.
+/// Expects readHeightMapFile(path) to throw a HeightMapFileError at line/column whose message
+/// names the file, and parseHeightMapText (the fuzz target's entry point) on the file's bytes the
+/// same error.
 void expectFileError(const std::string& path, int line, int column, const std::string& fragment) {
   try {
     (void)readHeightMapFile(path);
     ADD_FAILURE() << "no error for " << path;
   } catch (const HeightMapFileError& e) {
+    if (std::ifstream in{path}) {
+      const std::string bytes{std::istreambuf_iterator<char>(in), {}};
+      try {
+        (void)geaware::io::parseHeightMapText(bytes, path);
+        ADD_FAILURE() << "no error from memory for " << path;
+      } catch (const HeightMapFileError& m) {
+        EXPECT_STREQ(m.what(), e.what());
+      }
+    }
     EXPECT_EQ(e.file(), path);
     EXPECT_EQ(e.line(), line) << e.what();
     EXPECT_EQ(e.column(), column) << e.what();

@@ -16,6 +16,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "geaware/model/height_grid.hpp"
 
@@ -38,5 +39,8 @@ class HeightMapFileError : public std::runtime_error {
 /// Reads the format above: at least 2×2 finite heights, rectangular, cell > 0. Throws
 /// HeightMapFileError naming the file, line and column.
 [[nodiscard]] model::HeightGrid readHeightMapFile(const std::string& path);
+/// Parses height-map text (the bytes of a file; `source` names it in errors) as
+/// readHeightMapFile does after reading the file.
+[[nodiscard]] model::HeightGrid parseHeightMapText(std::string_view text, const std::string& source);
 
 }  // namespace geaware::io
