@@ -67,7 +67,6 @@ K integer(std::string_view key, std::string_view unit, long lo, long hi,
   return k;
 }
 
-constexpr double kBig = 1e12;
 constexpr bool kOpen = true;    // lower bound excluded
 constexpr bool kClosed = false; // lower bound included
 

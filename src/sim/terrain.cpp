@@ -298,7 +298,7 @@ std::optional<HeightMapHit> HeightMap::walk(const Eigen::Vector3d& origin_W,
   };
   std::ptrdiff_t I = cellOf(u0 + du * t, last_x);
   std::ptrdiff_t J = cellOf(v0 + dv * t, last_y);
-  constexpr double kNever = std::numeric_limits<double>::infinity();
+  static constexpr double kNever = std::numeric_limits<double>::infinity();
   // The ray parameter at which the track leaves cell I along one axis (∞: never).
   const auto exitOf = [](std::ptrdiff_t c, std::ptrdiff_t last, double w0, double dw,
                          double inv_dw) {
