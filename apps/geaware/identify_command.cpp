@@ -43,6 +43,8 @@ struct IdentifyOptions {
   double table_top_m = 0.5;             ///< automatic F_G knots up to this height [m]
   std::string table_heights;            ///< explicit knots FROM:TO:STEP (empty: automatic)
   std::string map;                      ///< log map (built-in name or file) for autopilot logs
+  std::string voltage_column;           ///< rotor: the battery-voltage column (empty: none)
+  double reference_voltage_V = 0.0;     ///< rotor: the curve's reference voltage (0: median) [V]
   double mass_kg = 0.0;                 ///< vehicle mass [kg]; 0: the base vehicle's
 };
 
@@ -110,7 +112,9 @@ ident::IdentifyResult identify(const IdentifyOptions& opt, const model::VehicleP
   }
   if (opt.kind == "rotor") {
     ident::RotorStandColumns c;
+    c.voltage = opt.voltage_column;
     renameColumns(opt.columns, {&c.t, &c.throttle, &c.rpm, &c.thrust, &c.torque});
+    io_opt.reference_voltage_V = opt.reference_voltage_V;
     return ident::identifyRotorStand(ident::readRotorStandLog(opt.log, c), io_opt);
   }
   if (opt.kind == "platform") return ident::identifyPlatform(readPlatform(opt), base, io_opt);
@@ -250,6 +254,16 @@ Runner addIdentifyCommand(CLI::App& app) {
     sub->add_option("--report", opts->report, "write an HTML report (parameters, residuals, fit plots) to DIR");
     sub->add_option("--column", opts->columns, "rename a column, DEFAULT=ACTUAL (e.g. fz_N=Fz); repeatable");
     sub->add_option("--loss", opts->loss, "robust loss")->check(CLI::IsMember({"huber", "cauchy", "none"}))->capture_default_str();
+    if (name == "rotor") {
+      sub->add_option("--voltage-column", opts->voltage_column,
+                      "the log's battery-voltage column [V]: fit the throttle curve's voltage dependence "
+                      "n ∝ (V/V_ref)^p (throttle_curve.reference_voltage_V, voltage_exponent; "
+                      "docs/vehicle-file.md)");
+      sub->add_option("--reference-voltage", opts->reference_voltage_V,
+                      "with --voltage-column: the voltage the fitted curve holds at (default: the log's "
+                      "median voltage) [V]")
+          ->check(positive());
+    }
     if (name == "platform") {
       sub->add_option("--tilt-limit", opts->tilt_limit_deg, "largest board tilt used for the leveling torque [deg]")
           ->check(finiteIn(0.0, 90.0, true))

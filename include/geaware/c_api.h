@@ -60,6 +60,11 @@ typedef struct geaware_vehicle {
   double drag_heights_m[GEAWARE_MAX_DRAG_ROWS];        /**< increasing heights [m] */
   double drag_d_x_N_per_mps[GEAWARE_MAX_DRAG_ROWS];    /**< rotor drag along body x [N/(m/s)] */
   double drag_d_y_N_per_mps[GEAWARE_MAX_DRAG_ROWS];    /**< rotor drag along body y [N/(m/s)] */
+  /* Added in 0.2.0, at the end so that code filling the fields above still compiles: the
+   * throttle curve's battery-voltage dependence, speed scaled by (V/V_ref)^p. Zero-initialise
+   * the struct (or start from geaware_vehicle_builtin()): V_ref = 0 means none. */
+  double throttle_reference_voltage_V;  /**< V_ref the curve holds at; 0: no dependence [V] */
+  double throttle_voltage_exponent;     /**< p [-] (1: speed proportional to voltage) */
 } geaware_vehicle;
 
 /** Everything the controller reads in one update. */
@@ -84,6 +89,9 @@ typedef struct geaware_controller_input {
   double height_m;               /**< rotor-plane height above the ground, from a ranger [m] */
   int height_valid;              /**< 0: no reading this tick (the last valid height is used) */
   double rotor_speeds_rpm[4];    /**< measured (ESC telemetry), mixer order [rpm] */
+  /* Added in 0.2.0, at the end: zero-initialised inputs keep the old behaviour. */
+  double battery_voltage_V;      /**< measured battery voltage; 0 or NaN: not measured (the
+                                      throttle curve at its reference voltage) [V] */
 } geaware_controller_input;
 
 /** The commands of one update. */

@@ -67,7 +67,8 @@ model::VehicleParams toParams(const geaware_vehicle& v) {
   p.min_rotor_plane_height_m = v.min_rotor_plane_height_m;
   p.rotor = {v.k_T_N_per_rpm2, v.k_TX_N_per_rpm2, v.k_TY_N_per_rpm2, v.k_I_Nm_per_rpm2,
              v.J_R_kgm2};
-  p.throttle = {v.throttle_c2_rpm2, v.throttle_c1_rpm2, v.throttle_c0_rpm2};
+  p.throttle = {v.throttle_c2_rpm2, v.throttle_c1_rpm2, v.throttle_c0_rpm2,
+                v.throttle_reference_voltage_V, v.throttle_voltage_exponent};
   p.additional_thrust.g1_m2 = v.g1_m2;
   p.additional_thrust.g2_m2 = v.g2_m2;
   p.leveling_torque.g3_m = v.g3_m;
@@ -214,6 +215,8 @@ geaware_status geaware_vehicle_builtin(geaware_vehicle* v) {
     v->throttle_c2_rpm2 = p.throttle.c2_rpm2;
     v->throttle_c1_rpm2 = p.throttle.c1_rpm2;
     v->throttle_c0_rpm2 = p.throttle.c0_rpm2;
+    v->throttle_reference_voltage_V = p.throttle.reference_voltage_V;
+    v->throttle_voltage_exponent = p.throttle.voltage_exponent;
     v->g1_m2 = p.additional_thrust.g1_m2;
     v->g2_m2 = p.additional_thrust.g2_m2;
     v->g3_m = p.leveling_torque.g3_m;
@@ -295,6 +298,7 @@ geaware_status geaware_controller_update(geaware_controller* c,
   x.height_valid = in->height_valid != 0;
   x.rotor_speeds_rpm = Eigen::Vector4d(in->rotor_speeds_rpm[0], in->rotor_speeds_rpm[1],
                                        in->rotor_speeds_rpm[2], in->rotor_speeds_rpm[3]);
+  x.battery_voltage_V = in->battery_voltage_V;  // 0 or NaN: not measured (ThrottleCurve)
   // The disturbance observer (paper eq. 6) on exactly the controller's inputs, as in flight.
   const estimation::DisturbanceEstimate d =
       c->observer.update({x.t_s, x.gyro_B, x.accel_B, x.rotor_speeds_rpm, x.estimate.q_WB});

@@ -414,12 +414,14 @@ ControllerOutput Controller::step(const ControllerInput& in) noexcept {
     tau = J.cwiseProduct(w_dot_des) + w_des.cross(J.cwiseProduct(w_des));
   }
 
-  // 5. Rotor speeds and throttles: inverse throttle curve plus the shared PI correction.
+  // 5. Rotor speeds and throttles: inverse throttle curve (at the measured battery voltage, when
+  //    the vehicle's curve has a voltage dependence) plus the shared PI correction.
   Eigen::Vector3d tau_alloc = tau;
   tau_alloc.z() = allocatedYawTorque(in, tau.z());
+  const double v_scale = throttle_curve_.voltageScale(in.battery_voltage_V);
   const RotorAllocation alloc =
-      allocateRotorSpeeds(mixer_.inverse(), thrust, tau_alloc, throttle_curve_.minSpeedRpm(),
-                          throttle_curve_.maxSpeedRpm());
+      allocateRotorSpeeds(mixer_.inverse(), thrust, tau_alloc, throttle_curve_.minSpeedRpm() * v_scale,
+                          throttle_curve_.maxSpeedRpm() * v_scale);
   if (alloc.thrust_saturated) flags |= kFlagThrustSaturated;
   if (alloc.roll_pitch_saturated) flags |= kFlagRollPitchSaturated;
   if (alloc.yaw_saturated) flags |= kFlagYawSaturated;
@@ -428,7 +430,8 @@ ControllerOutput Controller::step(const ControllerInput& in) noexcept {
   ControllerOutput out;
   out.n_des_rpm = alloc.n_sq_rpm2.cwiseSqrt();
   for (int i = 0; i < 4; ++i) {
-    out.throttle[static_cast<std::size_t>(i)] = std::clamp(throttle_curve_.throttle(out.n_des_rpm(i)) + t_e, 0.0, 1.0);
+    out.throttle[static_cast<std::size_t>(i)] =
+        std::clamp(throttle_curve_.throttle(out.n_des_rpm(i) / v_scale) + t_e, 0.0, 1.0);
   }
   out.a_des_W = a_des;
   out.thrust_des_N = thrust;

@@ -239,6 +239,10 @@ class FlightLoop {
     control::ControllerInput& in = tick_.input;
     in.t_s = x.t_s;
     in.reference = s_.trajectory->sample(t_traj);
+    // The battery's terminal voltage as the flight controller's power module measures it (its
+    // noise, ≈ 10 mV, is far below the sag it compensates and is left out). The controller uses
+    // it only when the vehicle file gives the throttle curve's voltage dependence.
+    in.battery_voltage_V = plant_.motors().voltageV();
     tick_.controller_active = closed_ && eskf_->initialised() && have_telemetry_;
     if (tick_.controller_active) {
       const estimation::EskfOutput eo = eskf_->output();

@@ -66,7 +66,7 @@ const std::vector<std::string_view>& flightLogColumns() {
       // rotors
       "n_des_1_rpm", "n_des_2_rpm", "n_des_3_rpm", "n_des_4_rpm", "n_meas_1_rpm", "n_meas_2_rpm",
       "n_meas_3_rpm", "n_meas_4_rpm", "n_true_1_rpm", "n_true_2_rpm", "n_true_3_rpm",
-      "n_true_4_rpm", "throttle_1", "throttle_2", "throttle_3", "throttle_4",
+      "n_true_4_rpm", "throttle_1", "throttle_2", "throttle_3", "throttle_4", "battery_V",
       // control::ControllerFlag bits
       "flags",
       // the disturbance observer (paper eq. 6), filtered: ã_ext (world), τ̃_ext (body), F̃_G
@@ -147,6 +147,7 @@ void CsvFlightLog::onTick(const FlightTick& k) noexcept {
   for (int i = 0; i < 4; ++i) w.num(in.rotor_speeds_rpm(i));
   for (double n : x.n_rpm) w.num(n);
   for (double t : k.throttle) w.num(t);
+  w.num(in.battery_voltage_V);
   w.integer(out.flags);
   const estimation::DisturbanceEstimate& d = k.disturbance;
   w.integer(d.valid ? 1 : 0);

@@ -68,6 +68,7 @@ RobustOptions robustLoss(std::string_view name) {
 IdentifyResult identifyRotorStand(const RotorStandLog& log, const IdentifyOptions& options) {
   RotorFitOptions fo;
   fo.robust = options.robust;
+  fo.reference_voltage_V = options.reference_voltage_V;
   const RotorFit fit = fitRotorStand(log, fo);
   IdentifyResult r;
   r.kind = "rotor";
@@ -77,6 +78,11 @@ IdentifyResult identifyRotorStand(const RotorStandLog& log, const IdentifyOption
   r.parameters.push_back({"throttle_curve.c2_rpm2", fit.c2_rpm2, "rpm²"});
   r.parameters.push_back({"throttle_curve.c1_rpm2", fit.c1_rpm2, "rpm²"});
   r.parameters.push_back({"throttle_curve.c0_rpm2", fit.c0_rpm2, "rpm²"});
+  if (fit.reference_voltage_V && fit.voltage_exponent) {
+    // V_ref is chosen (the median voltage, or the option), not fitted: no standard error.
+    r.parameters.push_back({"throttle_curve.reference_voltage_V", {*fit.reference_voltage_V, 0.0}, "V"});
+    r.parameters.push_back({"throttle_curve.voltage_exponent", *fit.voltage_exponent, ""});
+  }
   r.residuals = {{"thrust", fit.thrust, "N"},
                  {"torque", fit.torque, "N·m"},
                  {"throttle curve (n²/n)", fit.throttle, "rpm"}};

@@ -30,6 +30,7 @@ CsvColumn unit(const std::string& n) { return {n, 0.0, 1.0}; }         // thrott
 CsvColumn velocity(const std::string& n) { return {n, -200.0, 200.0}; }  // [m/s]
 CsvColumn quaternion(const std::string& n) { return {n, -1.000001, 1.000001}; }
 CsvColumn acceleration(const std::string& n) { return {n, -1000.0, 1000.0}; }  // [m/s²]
+CsvColumn voltage(const std::string& n) { return {n, 0.0, 1000.0}; }  // [V]
 
 /// The columns of one log: asked for in order by kind, then read and handed out in that order.
 class LogColumns {
@@ -84,8 +85,10 @@ RotorStandLog readRotorStandLog(const std::filesystem::path& file, const RotorSt
   RotorStandLog log;
   LogColumns k;
   k.add(time, c.t).add(unit, c.throttle).add(speed, c.rpm).add(force, c.thrust).add(torque, c.torque);
+  if (!c.voltage.empty()) k.add(voltage, c.voltage);
   k.read(file, log);
   k.take(log.t_s); k.take(log.throttle); k.take(log.rpm); k.take(log.thrust_N); k.take(log.torque_Nm);
+  if (!c.voltage.empty()) k.take(log.voltage_V);
   return log;
 }
 

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "fit_support.hpp"
+#include "geaware/ident/voltage_fit.hpp"
 #include "geaware/model/units.hpp"
 
 namespace geaware::ident {
@@ -135,6 +136,21 @@ RotorFit fitRotorStand(const RotorStandLog& log, const RotorFitOptions& options)
                            num(options.throttle_max_rate_rpm_per_s) +
                            " rpm/s: the throttle curve is fitted on all samples, transients included");
     max_rate_used = std::numeric_limits<double>::infinity();
+  }
+  if (!log.voltage_V.empty()) {
+    std::vector<char> use(n, 0);
+    for (std::size_t i = 0; i < n; ++i) use[i] = std::abs(rate[i]) <= max_rate_used ? 1 : 0;
+    const ThrottleVoltageFit tv =
+        fitThrottleVoltage(log.throttle, log.rpm, log.voltage_V, use, options.reference_voltage_V);
+    detail::require(tv.fit, src, "the throttle curve with its voltage dependence (rpm² vs throttle, voltage)");
+    fit.c2_rpm2 = tv.fit.estimate(0);
+    fit.c1_rpm2 = tv.fit.estimate(1);
+    fit.c0_rpm2 = tv.fit.estimate(2);
+    fit.voltage_exponent = tv.fit.estimate(3);
+    fit.reference_voltage_V = tv.reference_voltage_V;
+    fit.throttle = tv.fit.stats;
+    if (!tv.fit.message.empty()) fit.warnings.push_back("voltage fit: " + tv.fit.message);
+    return fit;
   }
   const auto th = fitLinear(
       n, 3,

@@ -10,6 +10,10 @@ void addRotorFit(io::VehicleUpdate& u, const RotorFit& f) {
   setEstimate(u, "throttle_curve.c2_rpm2", f.c2_rpm2);
   setEstimate(u, "throttle_curve.c1_rpm2", f.c1_rpm2);
   setEstimate(u, "throttle_curve.c0_rpm2", f.c0_rpm2);
+  if (f.reference_voltage_V && f.voltage_exponent) {
+    u.set("throttle_curve.reference_voltage_V", *f.reference_voltage_V);
+    setEstimate(u, "throttle_curve.voltage_exponent", *f.voltage_exponent);
+  }
 }
 
 void addAdditionalThrust(io::VehicleUpdate& u, const AdditionalThrustFit& f, bool include_k_T) {

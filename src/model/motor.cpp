@@ -22,6 +22,12 @@ double ThrottleCurve::speedRpm(double throttle) const noexcept {
   return std::sqrt((p_.c2_rpm2 * t + p_.c1_rpm2) * t + p_.c0_rpm2);
 }
 
+double ThrottleCurve::voltageScale(double voltage_V) const noexcept {
+  if (!(p_.reference_voltage_V > 0.0) || !(voltage_V > 0.0) || !std::isfinite(voltage_V)) return 1.0;
+  const double ratio = std::clamp(voltage_V / p_.reference_voltage_V, 0.5, 1.5);
+  return p_.voltage_exponent == 1.0 ? ratio : std::pow(ratio, p_.voltage_exponent);
+}
+
 double ThrottleCurve::throttle(double n_rpm) const noexcept {
   if (!(n_rpm > n_min_rpm_)) return 0.0;  // also catches NaN: no throttle rather than NaN
   if (n_rpm >= n_max_rpm_) return 1.0;

@@ -77,6 +77,15 @@ std::vector<S> bodySpecs() {
   S c0 = fitted("throttle_curve.c0_rpm2", "rpm²", {0.0, 1e12, kInclusive},
                 [](P& p) -> double& { return p.throttle.c0_rpm2; });
   c0.note = "(n² at zero throttle)";
+  // The throttle curve's battery-voltage dependence n ∝ (V/V_ref)^p (issue 11 item 4, issue 12
+  // item 4): optional, a vehicle file without it has none (V_ref = 0).
+  S v_ref = fitted("throttle_curve.reference_voltage_V", "V", {0.0, 1000.0, kInclusive},
+                   [](P& p) -> double& { return p.throttle.reference_voltage_V; });
+  v_ref.note = "(0: no voltage dependence)";
+  v_ref.optional = true;
+  S exponent = fitted("throttle_curve.voltage_exponent", "", {0.0, 4.0, kInclusive},
+                      [](P& p) -> double& { return p.throttle.voltage_exponent; });
+  exponent.optional = true;
 
   return {
       name,
@@ -105,6 +114,8 @@ std::vector<S> bodySpecs() {
       fitted("throttle_curve.c1_rpm2", "rpm²", kCurveCoefficient,
              [](P& p) -> double& { return p.throttle.c1_rpm2; }),
       c0,
+      v_ref,
+      exponent,
   };
 }
 

@@ -45,6 +45,12 @@ static double hover_throttle(const geaware_vehicle* v, double h) {
   return (-b + sqrt(b * b - 4.0 * a * c)) / (2.0 * a);
 }
 
+/* The inverse throttle curve at the reference voltage: t with c2 t^2 + c1 t + c0 = n^2. */
+static double curve_throttle(const geaware_vehicle* v, double n) {
+  const double a = v->throttle_c2_rpm2, b = v->throttle_c1_rpm2, c = v->throttle_c0_rpm2 - n * n;
+  return (-b + sqrt(b * b - 4.0 * a * c)) / (2.0 * a);
+}
+
 int main(int argc, char** argv) {
   geaware_vehicle v;
   geaware_controller* ctl = NULL;
@@ -122,6 +128,39 @@ int main(int argc, char** argv) {
   geaware_controller_reset(ctl);
   geaware_controller_destroy(ctl);
   geaware_controller_destroy(NULL);
+
+  /* The battery voltage: with the curve's dependence (V_ref 16 V, p = 1) a fresh controller's
+   * first throttles are those without a measurement at 16 V, bit for bit, and at 14 V they are
+   * those of a rotor speed 16/14 times higher on the reference curve. */
+  {
+    double t_none[4], t_ref[4], t_low[4];
+    geaware_vehicle vv = v;
+    vv.throttle_reference_voltage_V = 16.0;
+    vv.throttle_voltage_exponent = 1.0;
+    hover_input(&in, h);
+    for (k = 0; k < 4; ++k) in.rotor_speeds_rpm[k] = 10000.0;
+    for (i = 0; i < 3; ++i) {
+      const double volts[3] = {0.0, 16.0, 14.0};
+      double* dst = i == 0 ? t_none : i == 1 ? t_ref : t_low;
+      CHECK(geaware_controller_create(&vv, "model:model_indi", 200.0, &ctl, msg, sizeof msg) ==
+                GEAWARE_OK, msg);
+      in.battery_voltage_V = volts[i];
+      CHECK(geaware_controller_update(ctl, &in, &out) == GEAWARE_OK, "update with a voltage");
+      for (k = 0; k < 4; ++k) dst[k] = out.throttle[k];
+      geaware_controller_destroy(ctl);
+    }
+    in.battery_voltage_V = 0.0;
+    for (k = 0; k < 4; ++k) {
+      /* Both ticks add the same PI correction (first tick, same measured speeds), so the
+       * difference is that of the inverse curve at n·16/14 and at n. */
+      const double n = out.rotor_speeds_rpm[k];
+      CHECK(t_ref[k] == t_none[k], "the reference voltage changes nothing");
+      CHECK(t_low[k] > t_ref[k] + 0.01, "a low battery needs more throttle");
+      CHECK(fabs((t_low[k] - t_ref[k]) - (curve_throttle(&vv, n * 16.0 / 14.0) -
+                                          curve_throttle(&vv, n))) < 1e-9,
+            "low-voltage throttle is the inverse curve at 16/14 the speed");
+    }
+  }
 
   /* The paper's configuration; the neural one needs a network the C interface does not take. */
   CHECK(geaware_controller_create(&v, "model:model_indi", 0.0, &ctl, msg, sizeof msg) ==

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -335,6 +336,41 @@ TEST(ControllerParams, ValidationNamesTheField) {
   TorqueCompensation t{};
   EXPECT_TRUE(parse("model_indi", t));
   EXPECT_EQ(t, TorqueCompensation::kModelIndi);
+}
+
+}  // namespace
+
+namespace {
+
+/// 200 ticks of a hover 2 cm low at 0.3 m, every output throttle collected.
+std::vector<double> throttlesOf(const geaware::model::VehicleModel& vehicle, double voltage_V) {
+  Controller c(vehicle, paramsFor(AccelerationCompensation::kModel, TorqueCompensation::kModelIndi));
+  ControllerInput in = hoverInput(0.3);
+  in.estimate.p_W.z() = 0.28;
+  in.battery_voltage_V = voltage_V;
+  std::vector<double> out;
+  for (int k = 0; k < 200; ++k) {
+    const ControllerOutput y = c.update(in);
+    out.insert(out.end(), y.throttle.begin(), y.throttle.end());
+    in.rotor_speeds_rpm = y.n_des_rpm;
+  }
+  return out;
+}
+
+TEST(Controller, BatteryVoltageIsUsedOnlyWithTheVehiclesVoltageDependence) {
+  const auto none = throttlesOf(paperVehicle(), std::nan(""));
+  // The paper's vehicle file has no voltage dependence: any reading changes nothing.
+  EXPECT_EQ(throttlesOf(paperVehicle(), 13.9), none);
+  auto p = paperVehicle().params();
+  p.throttle.reference_voltage_V = 16.0;
+  p.throttle.voltage_exponent = 1.0;
+  const geaware::model::VehicleModel with(p);
+  // With it: at the reference voltage or without a reading, the same throttles bit for bit.
+  EXPECT_EQ(throttlesOf(with, 16.0), none);
+  EXPECT_EQ(throttlesOf(with, std::nan("")), none);
+  // At 14 V every throttle is higher: the same speeds need more of it.
+  const auto low = throttlesOf(with, 14.0);
+  for (std::size_t i = 0; i < low.size(); ++i) ASSERT_GT(low[i], none[i]) << i;
 }
 
 }  // namespace

@@ -242,7 +242,7 @@ TEST_F(VehicleWriter, TablesAndFormulaKeysOfACurveReplaceEachOther) {
   ASSERT_EQ(u.entries().size(), 2u);
   EXPECT_EQ(u.entries()[1].key, kLeveling);
   // scalar keys keep their rules
-  EXPECT_EQ(VehicleUpdate::fittedKeys().size(), 16u);
+  EXPECT_EQ(VehicleUpdate::fittedKeys().size(), 18u);  // with the throttle curve's two voltage keys
   EXPECT_THROW(u.set(kThrust, 1.0), std::invalid_argument);
 }
 

@@ -3,6 +3,7 @@
 #include "geaware/model/motor.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include <gtest/gtest.h>
 
@@ -76,3 +77,34 @@ TEST(VehicleModel, HoverSpeedFallsNearTheGround) {
 }
 
 }  // namespace
+
+// The battery-voltage dependence n(t, V) = n(t)·(V/V_ref)^p (model/vehicle_params.hpp).
+TEST(ThrottleCurve, VoltageDependenceIsExactAtTheReferenceAndWithoutAMeasurement) {
+  auto p = geaware_test::paperParams().throttle;
+  const ThrottleCurve plain(p);
+  p.reference_voltage_V = 16.0;
+  p.voltage_exponent = 1.0;
+  const ThrottleCurve curve(p);
+  for (double n : {3500.0, 9000.0, 10187.0, 15350.0, 19000.0}) {
+    EXPECT_EQ(curve.throttle(n, 16.0), plain.throttle(n));  // bit for bit at V_ref
+    EXPECT_EQ(curve.throttle(n, std::nan("")), plain.throttle(n));  // not measured
+    EXPECT_EQ(curve.throttle(n, 0.0), plain.throttle(n));
+    EXPECT_EQ(plain.throttle(n, 14.0), plain.throttle(n));  // no dependence in the file
+  }
+  EXPECT_EQ(curve.voltageScale(std::numeric_limits<double>::infinity()), 1.0);
+}
+
+TEST(ThrottleCurve, VoltageDependenceScalesTheSpeedAndItsInverseUndoesIt) {
+  auto p = geaware_test::paperParams().throttle;
+  p.reference_voltage_V = 16.0;
+  p.voltage_exponent = 1.3;
+  const ThrottleCurve curve(p);
+  EXPECT_NEAR(curve.voltageScale(14.0), std::pow(14.0 / 16.0, 1.3), 1e-15);
+  EXPECT_DOUBLE_EQ(curve.speedRpm(0.4, 14.0), curve.speedRpm(0.4) * std::pow(14.0 / 16.0, 1.3));
+  for (double t : {0.1, 0.3, 0.5, 0.8}) {
+    for (double v : {13.0, 14.8, 16.8}) EXPECT_NEAR(curve.throttle(curve.speedRpm(t, v), v), t, 1e-12);
+  }
+  // A low battery needs more throttle for the same speed; an absurd reading is held to 0.5·V_ref.
+  EXPECT_GT(curve.throttle(10000.0, 14.0), curve.throttle(10000.0, 16.0));
+  EXPECT_EQ(curve.voltageScale(1.0), std::pow(0.5, 1.3));
+}

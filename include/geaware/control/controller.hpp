@@ -64,6 +64,11 @@ struct ControllerInput {
   /// (ControllerParams::dob_time_constant_s > 0); the paper's configurations ignore it.
   Eigen::Vector3d external_accel_W = Eigen::Vector3d::Zero();
   bool external_accel_valid = false;  ///< false: no estimate this tick (warming up, bad input)
+  /// Measured battery voltage, for the throttle curve's voltage dependence (the vehicle's
+  /// throttle_curve.reference_voltage_V and voltage_exponent): the rotor-speed command is turned
+  /// into throttle at this voltage. NaN (the default): not measured, the curve at its reference
+  /// voltage, as before the input existed [V].
+  double battery_voltage_V = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Conditions met during an update (bit flags).

@@ -35,6 +35,9 @@ struct IdentifyOptions {
   CurveForm ground_effect = CurveForm::kPaper;
   double table_top_m = 0.5;        ///< tables: automatic F_G knots up to this height [m]
   std::vector<double> table_heights_m;  ///< tables: explicit knots for both curves (empty: automatic)
+  /// rotor, with a voltage column: the voltage the fitted throttle curve holds at; ≤ 0: the
+  /// median voltage of the log [V].
+  double reference_voltage_V = 0.0;
 };
 
 /// The loss by name: "huber" (default scale), "cauchy" (scale 2.385) or "none"; throws

@@ -53,6 +53,9 @@ struct RotorStandColumns {
   std::string rpm = "rpm";
   std::string thrust = "thrust_N";
   std::string torque = "torque_Nm";    ///< reaction torque about the rotor axis [N·m]
+  /// Battery (supply) voltage [V]; empty: not read (the throttle curve without its voltage
+  /// dependence). `identify rotor --voltage-column voltage_V`.
+  std::string voltage;
 };
 
 struct RotorStandLog {
@@ -63,6 +66,7 @@ struct RotorStandLog {
   std::vector<double> rpm;
   std::vector<double> thrust_N;
   std::vector<double> torque_Nm;
+  std::vector<double> voltage_V;  ///< empty when not read [V]
 
   [[nodiscard]] std::size_t size() const noexcept { return t_s.size(); }
 };

@@ -4,6 +4,7 @@
 //   thrust  T = k_T·n²                          linear least squares → k_T
 //   torque  M = k_I·n² + J_R·ṅ                  linear least squares → k_I, J_R
 //   ESC     n² = c2·t² + c1·t + c0              linear least squares → throttle curve
+//           × (V/V_ref)^(2p) with a voltage column (ident/voltage_fit.hpp)
 // with n in rpm, ṅ in rpm/s (J_R in kg·m², so ṅ is converted to rad/s² as in model/motor.hpp).
 // ṅ comes from the time series, by a local linear regression of n over ±rate_window_s/2.
 
@@ -29,6 +30,9 @@ struct RotorFitOptions {
   /// The throttle curve is a steady-state map: samples whose speed changes faster than this
   /// are left out of its fit (+inf keeps all) [rpm/s].
   double throttle_max_rate_rpm_per_s = 2000.0;
+  /// With a voltage column: the battery voltage the fitted curve holds at; ≤ 0: the median
+  /// voltage of the steady samples [V].
+  double reference_voltage_V = 0.0;
 };
 
 struct RotorFit {
@@ -39,6 +43,10 @@ struct RotorFit {
   FitStats torque;                          ///< residuals in N·m
   Estimate c2_rpm2, c1_rpm2, c0_rpm2;       ///< throttle curve
   FitStats throttle;                        ///< residuals in rpm² (weighted by 1/n², see .cpp)
+  /// With a voltage column (ident/voltage_fit.hpp): the curve's reference voltage and the
+  /// exponent p of n ∝ (V/V_ref)^p; c2, c1, c0 are then the curve at that voltage.
+  std::optional<double> reference_voltage_V;
+  std::optional<Estimate> voltage_exponent;
   std::vector<std::string> warnings;        ///< problems that did not stop the fit
 };
 

@@ -74,6 +74,7 @@ void readOne(MapStack& maps, const model::ParamSpec<T>& s, T& out) {
   const std::string leaf = parts.back();
   parts.pop_back();
   MapReader& m = maps.at(parts);
+  if (s.optional && !m.has(leaf)) return;  // the struct's default stays
   switch (s.kind) {
     case model::ParamKind::kNumber: s.number(out) = m.number(leaf); break;
     case model::ParamKind::kList: s.list(out) = m.numbers(leaf); break;

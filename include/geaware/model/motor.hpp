@@ -17,7 +17,8 @@ namespace geaware::model {
 [[nodiscard]] double rotorReactionTorque(const RotorParams& p, double n_rpm,
                                          double n_dot_rpm_per_s) noexcept;
 
-/// ESC throttle curve n(t) = √(c2·t² + c1·t + c0) and its inverse. Validated parameters make
+/// ESC throttle curve n(t) = √(c2·t² + c1·t + c0) and its inverse, at the reference battery
+/// voltage, and scaled by (V/V_ref)^p at another (ThrottleCurveParams). Validated parameters make
 /// n² non-negative and strictly increasing on t ∈ [0, 1]; both directions clamp to that range.
 class ThrottleCurve {
  public:
@@ -32,6 +33,21 @@ class ThrottleCurve {
 
   [[nodiscard]] double minSpeedRpm() const noexcept { return n_min_rpm_; }  ///< n(0) [rpm]
   [[nodiscard]] double maxSpeedRpm() const noexcept { return n_max_rpm_; }  ///< n(1) [rpm]
+
+  /// (V/V_ref)^p, the factor the battery voltage V puts on every speed of the curve [-]. Exactly
+  /// 1 when the curve has no voltage dependence (V_ref = 0), when V is not a measurement (NaN,
+  /// ±inf, ≤ 0) and at V = V_ref; V/V_ref is held to [0.5, 1.5] (a reading outside is no battery
+  /// this curve was identified with).
+  [[nodiscard]] double voltageScale(double voltage_V) const noexcept;
+  /// speedRpm(throttle)·voltageScale(V) [rpm].
+  [[nodiscard]] double speedRpm(double throttle, double voltage_V) const noexcept {
+    return speedRpm(throttle) * voltageScale(voltage_V);
+  }
+  /// The throttle that gives rotor speed n at battery voltage V: throttle(n / voltageScale(V)),
+  /// bit for bit throttle(n) at V_ref or without a voltage [-].
+  [[nodiscard]] double throttle(double n_rpm, double voltage_V) const noexcept {
+    return throttle(n_rpm / voltageScale(voltage_V));
+  }
 
  private:
   ThrottleCurveParams p_;

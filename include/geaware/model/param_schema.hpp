@@ -59,6 +59,8 @@ struct ParamSpec {
   std::string_view table;  ///< kList: the table the column belongs to ("drag", "<curve>.table")
   std::size_t min_rows = 1;  ///< first column of a table: the fewest rows allowed
   bool fitted = false;       ///< identification may write it (io::VehicleUpdate)
+  /// A number the file may leave out: the struct's default value is then kept.
+  bool optional = false;
 
   /// The unit and note as range errors print them.
   [[nodiscard]] std::string unitText() const {
@@ -71,6 +73,11 @@ struct ParamSpec {
   /// height" (its other columns), "text".
   [[nodiscard]] std::string validText(bool first_column) const {
     if (kind == ParamKind::kText) return "text";
+    if (optional) return validRange() + ", optional";
+    return validRange(first_column);
+  }
+  /// validText without "optional".
+  [[nodiscard]] std::string validRange(bool first_column = false) const {
     auto num = [](double v) {
       std::string s = formatValue(v);
       if (const auto e = s.find("e+"); e != std::string::npos) s.erase(e + 1, 1);

@@ -22,12 +22,20 @@ struct RotorParams {
   double J_R_kgm2 = 0.0;           ///< rotor (+ motor bell) inertia about its axis [kg·m²]
 };
 
-/// ESC throttle curve: n² = c2·t² + c1·t + c0 for throttle t ∈ [0, 1], n in rpm.
+/// ESC throttle curve: n² = c2·t² + c1·t + c0 for throttle t ∈ [0, 1], n in rpm, at the
+/// reference battery voltage V_ref; at a battery voltage V the speed is scaled by (V/V_ref)^p:
+///   n(t, V) = √(c2·t² + c1·t + c0) · (V/V_ref)^p
+/// (p = 1: an ESC's duty cycle times the battery voltage drives the motor, whose speed is
+/// proportional to the applied voltage). V_ref = 0: the voltage dependence is not known and the
+/// curve is used at any voltage, as the paper's (identified "after removing the battery-voltage
+/// influence", at a voltage it does not publish).
 /// (docs/paper-facts.md: the published curve is one of rpm²; its printed c0 has a factor-10 typo.)
 struct ThrottleCurveParams {
   double c2_rpm2 = 0.0;  ///< quadratic coefficient [rpm²]
   double c1_rpm2 = 0.0;  ///< linear coefficient [rpm²]
   double c0_rpm2 = 0.0;  ///< value at zero throttle [rpm²]
+  double reference_voltage_V = 0.0;  ///< V_ref, the battery voltage the curve holds at; 0: none [V]
+  double voltage_exponent = 1.0;     ///< p, rotor speed ∝ (V/V_ref)^p at a fixed throttle [-]
 };
 
 /// A ground-effect curve given at measured heights instead of by the paper's formula,
