@@ -5,8 +5,13 @@
 // fitRotorStand and into the vehicle update; a log at one voltage is refused with the reason.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <random>
+#include <string>
 
 #include "geaware/ident/identify.hpp"
 #include "geaware/ident/rotor_fit.hpp"
@@ -104,6 +109,31 @@ TEST(VoltageFit, RotorStandFitWritesTheVoltageKeys) {
   const IdentifyResult plain = identifyRotorStand(standLog(kLaw, 3, false), {});
   ASSERT_TRUE(plain.fits.rotor);
   EXPECT_FALSE(plain.fits.rotor->voltage_exponent);
+}
+
+TEST(VoltageFit, AStandCsvWithAVoltageColumnIsReadAndFitted) {
+  const RotorStandLog log = standLog(kLaw, 9);
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("geaware_voltage_stand_" + std::to_string(::getpid()) + ".csv");
+  {
+    std::ofstream out(path);
+    out.precision(17);
+    out << "t_s,throttle,rpm,thrust_N,torque_Nm,vbat\n";
+    for (std::size_t i = 0; i < log.size(); ++i) {
+      out << log.t_s[i] << ',' << log.throttle[i] << ',' << log.rpm[i] << ',' << log.thrust_N[i]
+          << ',' << log.torque_Nm[i] << ',' << log.voltage_V[i] << '\n';
+    }
+  }
+  RotorStandColumns c;
+  c.voltage = "vbat";
+  const RotorStandLog back = readRotorStandLog(path, c);
+  const RotorStandLog without = readRotorStandLog(path, {});  // the column is not read
+  std::filesystem::remove(path);
+  EXPECT_TRUE(without.voltage_V.empty());
+  ASSERT_EQ(back.voltage_V, log.voltage_V);
+  const RotorFit fit = fitRotorStand(back);
+  ASSERT_TRUE(fit.voltage_exponent);
+  EXPECT_LT(std::abs(fit.voltage_exponent->value - kLaw.p), 4.0 * fit.voltage_exponent->std_error);
 }
 
 TEST(VoltageFit, OneVoltageCannotSeparateTheDependence) {
