@@ -15,6 +15,7 @@
 
 #include "geaware/experiments/identify_report.hpp"
 #include "geaware/ident/identify.hpp"
+#include "geaware/ident/screen.hpp"
 #include "geaware/io/json.hpp"
 #include "geaware/io/log_channels.hpp"
 #include "geaware/io/log_map.hpp"
@@ -50,7 +51,8 @@ struct IdentifyOptions {
 
 /// A flight log read from an autopilot log (ULog, DataFlash, CSV export) through a log map:
 /// the mapped channels on one time axis in ENU/FLU, a_ext computed by the paper's observer.
-ident::FlightLog readMappedFlight(const IdentifyOptions& opt, const model::VehicleParams& base) {
+ident::FlightLog readMappedFlight(const IdentifyOptions& opt, const model::VehicleParams& base,
+                                  std::vector<std::string>& notes) {
   const io::LogMap map = io::loadLogMap(opt.map);
   std::vector<std::string> wanted = {"height", "specific_force", "attitude", "rotor_speed"};
   if (!opt.hover) wanted.emplace_back("velocity");
@@ -62,6 +64,15 @@ ident::FlightLog readMappedFlight(const IdentifyOptions& opt, const model::Vehic
   for (const auto& w : data.warnings) std::cerr << "geaware: warning: " << opt.log << ": " << w << "\n";
   const io::MappedFlight mapped = io::mapFlight(data, map, wanted);
   ident::MappedFlightLog flight = ident::flightLogFromMapped(mapped, base.mass_kg, base.rotor.k_T_N_per_rpm2);
+  ident::FlightColumns names;
+  if (const auto it = map.channels.find("rotor_speed"); it != map.channels.end()) {
+    for (std::size_t k = 0; k < names.n.size() && k < it->second.fields.size(); ++k) {
+      const unsigned inst = k < it->second.field_instances.size() ? it->second.field_instances[k] : it->second.instance;
+      names.n[k] = it->second.topic + "[" + std::to_string(inst) + "]." + it->second.fields[k];
+    }
+  }
+  names.a_ext[2] = "a_ext z (computed)";
+  notes = ident::screenFlight(flight.log, names);
   for (const auto& n : mapped.notes) std::cerr << "geaware: note: " << opt.log << ": " << n << "\n";
   for (const auto& n : flight.notes) std::cerr << "geaware: note: " << opt.log << ": " << n << "\n";
   for (const auto& w : mapped.warnings) std::cerr << "geaware: warning: " << opt.log << ": " << w << "\n";
@@ -90,12 +101,21 @@ void add(std::vector<std::string*>& names, std::array<std::string, N>& a) {
   for (auto& s : a) names.push_back(&s);
 }
 
-ident::PlatformLog readPlatform(const IdentifyOptions& opt) {
+ident::PlatformLog readPlatform(const IdentifyOptions& opt, std::vector<std::string>& notes) {
   ident::PlatformColumns c;
   std::vector<std::string*> names{&c.t, &c.h, &c.tilt};
   add(names, c.n), add(names, c.f), add(names, c.tau);
   renameColumns(opt.columns, names);
-  return ident::readPlatformLog(opt.log, c);
+  ident::PlatformLog log = ident::readPlatformLog(opt.log, c);
+  notes = ident::screenPlatform(log, c);
+  return log;
+}
+
+/// The result with the screening's notes (rows dropped before the fit) in front of its own.
+ident::IdentifyResult withNotes(ident::IdentifyResult r, std::vector<std::string> notes) {
+  notes.insert(notes.end(), r.notes.begin(), r.notes.end());
+  r.notes = std::move(notes);
+  return r;
 }
 
 ident::IdentifyResult identify(const IdentifyOptions& opt, const model::VehicleParams& base) {
@@ -110,25 +130,37 @@ ident::IdentifyResult identify(const IdentifyOptions& opt, const model::VehicleP
       io_opt.table_heights_m = io::parseRange(opt.table_heights, "--table-heights", 1000).values();
     }
   }
+  std::vector<std::string> notes;  // of the screening before the fit (ident/screen.hpp)
   if (opt.kind == "rotor") {
     ident::RotorStandColumns c;
     c.voltage = opt.voltage_column;
     renameColumns(opt.columns, {&c.t, &c.throttle, &c.rpm, &c.thrust, &c.torque});
     io_opt.reference_voltage_V = opt.reference_voltage_V;
-    return ident::identifyRotorStand(ident::readRotorStandLog(opt.log, c), io_opt);
+    ident::RotorStandLog log = ident::readRotorStandLog(opt.log, c);
+    notes = ident::screenRotorStand(log, c);
+    return withNotes(ident::identifyRotorStand(log, io_opt), notes);
   }
-  if (opt.kind == "platform") return ident::identifyPlatform(readPlatform(opt), base, io_opt);
-  if (opt.kind == "correlations") return ident::identifyCorrelations(readPlatform(opt), base);
+  if (opt.kind == "platform") {
+    const ident::PlatformLog log = readPlatform(opt, notes);
+    return withNotes(ident::identifyPlatform(log, base, io_opt), notes);
+  }
+  if (opt.kind == "correlations") {
+    const ident::PlatformLog log = readPlatform(opt, notes);
+    return withNotes(ident::identifyCorrelations(log, base), notes);
+  }
+  ident::FlightLog log;
   if (!opt.map.empty()) {
-    const ident::FlightLog log = readMappedFlight(opt, base);
-    return opt.hover ? ident::identifyHover(log, base, io_opt) : ident::identifyFlight(log, base, io_opt);
+    log = readMappedFlight(opt, base, notes);
+  } else {
+    ident::FlightColumns c;
+    std::vector<std::string*> names{&c.t, &c.h};
+    add(names, c.v), add(names, c.q), add(names, c.a_ext), add(names, c.n);
+    renameColumns(opt.columns, names);
+    log = opt.hover ? ident::readHoverLog(opt.log, c) : ident::readFlightLog(opt.log, c);
+    notes = ident::screenFlight(log, c);
   }
-  ident::FlightColumns c;
-  std::vector<std::string*> names{&c.t, &c.h};
-  add(names, c.v), add(names, c.q), add(names, c.a_ext), add(names, c.n);
-  renameColumns(opt.columns, names);
-  if (opt.hover) return ident::identifyHover(ident::readHoverLog(opt.log, c), base, io_opt);
-  return ident::identifyFlight(ident::readFlightLog(opt.log, c), base, io_opt);
+  return withNotes(opt.hover ? ident::identifyHover(log, base, io_opt) : ident::identifyFlight(log, base, io_opt),
+                   notes);
 }
 
 io::Json estimateJson(const ident::Estimate& e) { return {{"value", e.value}, {"std_error", e.std_error}}; }
@@ -147,6 +179,8 @@ io::Json toJson(const ident::IdentifyResult& r, const IdentifyOptions& opt) {
                     {"outliers", f.stats.outliers}};
   }
   doc["warnings"] = r.warnings;
+  doc["notes"] = r.notes;
+  if (r.kind == "hover") doc["ground_effect_fitted"] = !r.fits.hover_thrust.has_value();
   const auto optional = [](const std::optional<ident::Estimate>& e) { return e ? estimateJson(*e) : io::Json(); };
   if (r.fits.mixing) {
     io::Json& bands = doc["height_bands"] = io::Json::array();

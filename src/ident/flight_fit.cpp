@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
@@ -41,31 +42,27 @@ AdditionalThrustFit fitHoverAdditionalThrust(const FlightLog& log, double mass_k
   return out;
 }
 
-HoverThrustFit fitHoverThrust(const FlightLog& log, const model::VehicleParams& base,
-                              double min_height_m, const RobustOptions& robust) {
-  const double m = base.mass_kg;
-  const double k_T = base.rotor.k_T_N_per_rpm2;
-  if (!(m > 0.0) || !(k_T > 0.0)) {
-    throw std::invalid_argument("fitHoverThrust: mass and k_T must be positive");
-  }
+namespace {
+
+/// k_T' in m·a_ext,z + k_T·S = k_T'·S·(1 + F_G(h)), S = Σn², for a known F_G (`thrust_ratio`):
+/// the observer's split undone, as in the hover descent's fit.
+HoverThrustFit fitKTOnly(const FlightLog& log, double m, double k_T,
+                         const std::function<double(double)>& thrust_ratio, const RobustOptions& robust) {
   const std::size_t n = log.size();
   if (log.a_ext_W[2].size() != n || log.h_m.size() != n) {
     throw std::invalid_argument("fitHoverThrust: the log lacks h or az_ext");
   }
-  const model::GroundEffectModel ge(base);
   HoverThrustFit out;
   if (n > 0) {
     out.h_min_m = *std::min_element(log.h_m.begin(), log.h_m.end());
     out.h_max_m = *std::max_element(log.h_m.begin(), log.h_m.end());
   }
-  // m·a_ext,z + k_T·S = k_T'·S·(1 + F_G(h)), S = Σn²: the observer's split undone, as in the
-  // hover descent's fit, with F_G known.
   const LeastSquaresFit ls = fitLinear(
       n, 1,
       [&](std::size_t i, double* x, double& y, double& w) {
         double S = 0.0;
         for (const auto& c : log.n_rpm) S += c[i] * c[i];
-        x[0] = S * (1.0 + ge.thrustRatio(log.h_m[i]));
+        x[0] = S * (1.0 + thrust_ratio(log.h_m[i]));
         y = m * log.a_ext_W[2][i] + k_T * S;
         w = 1.0;
         return S > 0.0;
@@ -76,11 +73,35 @@ HoverThrustFit fitHoverThrust(const FlightLog& log, const model::VehicleParams& 
   }
   out.k_T_N_per_rpm2 = ls.estimate(0);
   out.stats = ls.stats;
+  return out;
+}
+
+}  // namespace
+
+HoverThrustFit fitHoverThrust(const FlightLog& log, const model::VehicleParams& base,
+                              double min_height_m, const RobustOptions& robust) {
+  const double m = base.mass_kg;
+  const double k_T = base.rotor.k_T_N_per_rpm2;
+  if (!(m > 0.0) || !(k_T > 0.0)) {
+    throw std::invalid_argument("fitHoverThrust: mass and k_T must be positive");
+  }
+  const model::GroundEffectModel ge(base);
+  HoverThrustFit out = fitKTOnly(log, m, k_T, [&](double h) { return ge.thrustRatio(h); }, robust);
   if (out.h_min_m < min_height_m) {
     out.warnings.push_back("hover k_T: the log goes down to " + num(out.h_min_m) +
                            " m, below " + num(min_height_m) +
                            " m; F_G's error there enters k_T (hover higher)");
   }
+  detail::warnIfImprecise(out.warnings, "hover k_T", out.k_T_N_per_rpm2, "hover longer", 0.02);
+  return out;
+}
+
+HoverThrustFit fitHoverThrustOutOfGroundEffect(const FlightLog& log, double mass_kg, double k_T,
+                                               const RobustOptions& robust) {
+  if (!(mass_kg > 0.0) || !(k_T > 0.0)) {
+    throw std::invalid_argument("fitHoverThrustOutOfGroundEffect: mass and k_T must be positive");
+  }
+  HoverThrustFit out = fitKTOnly(log, mass_kg, k_T, [](double) { return 0.0; }, robust);
   detail::warnIfImprecise(out.warnings, "hover k_T", out.k_T_N_per_rpm2, "hover longer", 0.02);
   return out;
 }

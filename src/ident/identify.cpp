@@ -120,8 +120,40 @@ IdentifyResult identifyRotorStand(const RotorStandLog& log, const IdentifyOption
   return r;
 }
 
+namespace {
+
+/// A hover that never came within kHoverGroundEffectRadii rotor radii of the ground: k_T alone.
+IdentifyResult hoverKTAlone(const FlightLog& log, const model::VehicleParams& base,
+                            const IdentifyOptions& options, double reach_m) {
+  const HoverThrustFit fit = fitHoverThrustOutOfGroundEffect(log, base.mass_kg, base.rotor.k_T_N_per_rpm2,
+                                                             options.robust);
+  IdentifyResult r;
+  r.kind = "hover";
+  r.parameters = {{"rotor.k_T_N_per_rpm2", fit.k_T_N_per_rpm2, "N/rpm²"}};
+  r.residuals = {{"m·a_ext,z + k_T·Σn² = k_T'·Σn²", fit.stats, "N"}};
+  r.warnings = fit.warnings;
+  r.notes.push_back(fmt::format(
+      "F_G not fitted: the lowest logged height {:.4g} m is not below {:g} rotor radii ({:.4g} m for "
+      "geometry.propeller_radius_m = {:.4g}); k_T alone, with F_G taken as 0 (descend below {:.4g} m to fit g1, g2)",
+      fit.h_min_m, kHoverGroundEffectRadii, reach_m, base.propeller_radius_m, reach_m));
+  setEstimate(r.update, "rotor.k_T_N_per_rpm2", fit.k_T_N_per_rpm2);
+  detail::addStatsTables(r);
+  r.fits.hover_thrust = fit;
+  return r;
+}
+
+}  // namespace
+
 IdentifyResult identifyHover(const FlightLog& log, const model::VehicleParams& base,
                              const IdentifyOptions& options) {
+  if (!(base.propeller_radius_m > 0.0)) {
+    throw IdentError(log.source + ": the base vehicle has no geometry.propeller_radius_m: the hover fit needs it to "
+                     "tell whether the log comes near the ground (below 3 rotor radii)");
+  }
+  const double reach_m = kHoverGroundEffectRadii * base.propeller_radius_m;
+  if (!log.h_m.empty() && *std::min_element(log.h_m.begin(), log.h_m.end()) >= reach_m) {
+    return hoverKTAlone(log, base, options, reach_m);
+  }
   const AdditionalThrustFit fit =
       fitHoverAdditionalThrust(log, base.mass_kg, base.rotor.k_T_N_per_rpm2, options.robust);
   IdentifyResult r;
@@ -223,6 +255,7 @@ std::string resultText(const IdentifyResult& result) {
     s += fmt::format("residual RMS {:<32} {:>10.4g} {:<6} ({} samples, {} outliers)\n", f.name,
                      f.stats.residual_rms, f.unit, f.stats.count, f.stats.outliers);
   }
+  for (const auto& n : result.notes) s += "note: " + n + "\n";
   return s;
 }
 

@@ -92,6 +92,21 @@ TEST_F(IdentifyCli, TablesAndRotorAndCorrelationsJson) {
   EXPECT_EQ(corr["correlations"]["rows"].size(), corr["correlations"]["r"].size());
 }
 
+TEST_F(IdentifyCli, HoverFarFromTheGroundGivesKTAloneInTheJson) {
+  // A hover at 0.4–0.6 m, in a world without ground effect: k_T, no g1/g2, and the JSON says so.
+  const auto log = (dir_ / "hover.csv").string();
+  ident_test::writeHoverCsv(log, ident_test::hoverNoGroundEffect(5, 0.4, 0.6));
+  const auto& p = geaware_test::paperParams();
+  const auto doc = parse(geaware("identify flight --hover '" + log + "' --mass-kg " + std::to_string(p.mass_kg) +
+                                 " --json -"));
+  ASSERT_TRUE(doc["parameters"].contains("rotor.k_T_N_per_rpm2"));
+  EXPECT_NEAR(doc["parameters"]["rotor.k_T_N_per_rpm2"]["value"].get<double>() / p.rotor.k_T_N_per_rpm2, 1.0, 1e-3);
+  EXPECT_FALSE(doc["parameters"].contains("ground_effect.additional_thrust.g2_m2"));
+  EXPECT_FALSE(doc["ground_effect_fitted"].get<bool>());
+  ASSERT_EQ(doc["notes"].size(), 1U);
+  EXPECT_NE(doc["notes"][0].get<std::string>().find("F_G not fitted"), std::string::npos);
+}
+
 TEST(RigCli, CalibrateJsonOnStdoutIsOneDocument) {
   const auto doc = parse(geaware("rig calibrate --json -"));
   EXPECT_TRUE(doc["all_pass"].get<bool>());

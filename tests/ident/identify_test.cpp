@@ -224,6 +224,31 @@ TEST(Identify, HoverDescentRecoversFGAndWritesKTWithIt) {
   EXPECT_TRUE(updates(r, "ground_effect.additional_thrust.g2_m2"));
 }
 
+TEST(Identify, HoverFarFromTheGroundGivesKTAloneAndSaysSo) {
+  // Issue 11: a log at 0.4–0.6 m (4.5–6.7 rotor radii of the paper quadrotor, no ground effect
+  // in its world) reported an 8 % "ground effect". The rule: F_G only below 3 rotor radii.
+  const auto& p = geaware_test::paperParams();
+  geaware::model::VehicleParams observer = p;
+  observer.rotor.k_T_N_per_rpm2 *= 1.03;  // the observer's k_T 3 % high: the fit must undo it
+  const auto r = ident::identifyHover(ident_test::hoverNoGroundEffect(3, 0.4, 0.6, 1.03), observer, {});
+  EXPECT_EQ(r.kind, "hover");
+  ASSERT_EQ(r.parameters.size(), 1U);
+  EXPECT_TRUE(withinSigmas(find(r, "rotor.k_T_N_per_rpm2")->estimate, p.rotor.k_T_N_per_rpm2));
+  EXPECT_EQ(find(r, "ground_effect.additional_thrust.g1_m2"), nullptr);
+  EXPECT_EQ(find(r, "ground_effect.additional_thrust.g2_m2"), nullptr);
+  EXPECT_TRUE(updates(r, "rotor.k_T_N_per_rpm2"));
+  EXPECT_FALSE(updates(r, "ground_effect.additional_thrust.g2_m2"));
+  EXPECT_FALSE(r.fits.additional_thrust.has_value());
+  ASSERT_TRUE(r.fits.hover_thrust.has_value());
+  ASSERT_EQ(r.notes.size(), 1U);
+  EXPECT_NE(r.notes[0].find("F_G not fitted"), std::string::npos) << r.notes[0];
+  EXPECT_NE(ident::resultText(r).find("note: F_G not fitted"), std::string::npos);
+  // A descent down to 0.075 m (< 3·0.089 m) fits F_G.
+  const auto low = ident::identifyHover(ident_test::hoverDescent(7), p, {});
+  EXPECT_NE(find(low, "ground_effect.additional_thrust.g2_m2"), nullptr);
+  EXPECT_TRUE(low.notes.empty());
+}
+
 TEST(Identify, FlightRecoversTheDragTablePerBand) {
   const auto& p = geaware_test::paperParams();
   const geaware::model::RotorDragModel drag(p.drag);

@@ -120,6 +120,18 @@ inline geaware::ident::PlatformLog syntheticPlatform(const PlatformSpec& spec, s
   return log;
 }
 
+/// Writes a hover log in `identify flight --hover`'s CSV format (t, h, az_ext, n1..n4).
+inline void writeHoverCsv(const std::filesystem::path& file, const geaware::ident::FlightLog& log) {
+  std::ofstream os(file);
+  os.precision(12);
+  os << "t_s,h_m,az_ext_mps2,n1_rpm,n2_rpm,n3_rpm,n4_rpm\n";
+  for (std::size_t i = 0; i < log.size(); ++i) {
+    os << log.t_s[i] << ',' << log.h_m[i] << ',' << log.a_ext_W[2][i];
+    for (const auto& c : log.n_rpm) os << ',' << c[i];
+    os << '\n';
+  }
+}
+
 /// Writes a platform log in the rig's CSV format.
 inline void writePlatformCsv(const std::filesystem::path& file,
                              const geaware::ident::PlatformLog& log) {
@@ -188,6 +200,31 @@ inline geaware::ident::FlightLog hoverDescent(std::uint64_t seed, double observe
     // The observer explains k_T,obs·Σn² = observer_k_T_scale·T of the total T·(1 + F_G).
     log.a_ext_W[2].push_back((T * (1.0 + ge.thrustRatio(h)) - observer_k_T_scale * T) / p.mass_kg +
                              0.05 * noise(rng));
+    for (auto& c : log.n_rpm) c.push_back(rpm);
+  }
+  return log;
+}
+
+/// Hover between h_lo_m and h_hi_m (slow up and down) in a world WITHOUT ground effect: speeds
+/// hold m·g = k_T·Σn² with ±5 % speed changes; the observer's external acceleration is
+/// (m·g − observer_k_T_scale·k_T·Σn²)/m plus noise.
+inline geaware::ident::FlightLog hoverNoGroundEffect(std::uint64_t seed, double h_lo_m, double h_hi_m,
+                                                     double observer_k_T_scale = 1.0) {
+  const auto& p = geaware_test::paperParams();
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  geaware::ident::FlightLog log;
+  log.source = "hover_no_ge_" + std::to_string(seed);
+  const int n = 6000;  // 30 s at 200 Hz
+  for (int i = 0; i < n; ++i) {
+    const double s = 0.5 - 0.5 * std::cos(6.283185307 * i / (n - 1.0) * 3.0);
+    const double h = h_lo_m + (h_hi_m - h_lo_m) * s;
+    const double rpm = std::sqrt(p.mass_kg * geaware::model::kGravity / (4.0 * p.rotor.k_T_N_per_rpm2)) *
+                       (1.0 + 0.05 * std::sin(0.37 * i));
+    const double T = 4.0 * p.rotor.k_T_N_per_rpm2 * rpm * rpm;
+    log.t_s.push_back(0.005 * i);
+    log.h_m.push_back(h);
+    log.a_ext_W[2].push_back((T - observer_k_T_scale * T) / p.mass_kg + 0.05 * noise(rng));
     for (auto& c : log.n_rpm) c.push_back(rpm);
   }
   return log;

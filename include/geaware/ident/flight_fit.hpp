@@ -49,6 +49,17 @@ struct HoverThrustFit {
                                             double min_height_m = 1.0,
                                             const RobustOptions& robust = {});
 
+/// k_T alone from a hover that never comes near the ground (every logged height at or above
+/// 3 rotor radii, where `identify flight --hover` takes F_G as 0): m·a_ext,z + k_T·Σn² = k_T'·Σn²,
+/// one linear parameter. k_T_N_per_rpm2 is the k_T the log's external acceleration was computed
+/// with. Throws IdentError when the log has no usable sample.
+[[nodiscard]] HoverThrustFit fitHoverThrustOutOfGroundEffect(const FlightLog& log, double mass_kg,
+                                                             double k_T_N_per_rpm2,
+                                                             const RobustOptions& robust = {});
+
+/// Heights at or above this many rotor radii count as out of ground effect for the hover fit.
+inline constexpr double kHoverGroundEffectRadii = 3.0;
+
 struct DragFitOptions {
   RobustOptions robust;
   int height_bands = 5;               ///< equal-count height bands

@@ -97,6 +97,7 @@ struct Fits {
   std::optional<LevelingFit> leveling;
   std::optional<LevelingTableFit> leveling_table;
   std::optional<DragFit> drag;
+  std::optional<HoverThrustFit> hover_thrust;  ///< hover out of ground effect: k_T alone
   std::optional<CorrelationTable> correlations;
 };
 
@@ -105,6 +106,7 @@ struct IdentifyResult {
   std::vector<IdentifiedValue> parameters;
   std::vector<FitResiduals> residuals;
   std::vector<std::string> warnings;
+  std::vector<std::string> notes;  ///< what the fit decided by itself (e.g. F_G not fitted), said plainly
   io::VehicleUpdate update;  ///< empty for the correlations; provenance left to the caller
   Fits fits;
   std::vector<FittedTable> tables;  ///< platform with CurveForm::kTable: F_G, then M_G
@@ -127,8 +129,10 @@ struct IdentifyResult {
 [[nodiscard]] IdentifyResult identifyFlight(const FlightLog& log, const model::VehicleParams& base,
                                             const IdentifyOptions& options = {});
 
-/// Hover descent: k_T in hover with g1, g2 (eq. 10; `base` gives the mass and the k_T the log's
-/// external acceleration was computed with).
+/// Hover: k_T always, and g1, g2 (eq. 10) only when the logged heights reach below
+/// kHoverGroundEffectRadii·base.propeller_radius_m; a hover that never comes that near the ground
+/// gives k_T alone (F_G taken as 0) and says so in `notes`. `base` gives the mass, the propeller
+/// radius and the k_T the log's external acceleration was computed with.
 [[nodiscard]] IdentifyResult identifyHover(const FlightLog& log, const model::VehicleParams& base,
                                            const IdentifyOptions& options = {});
 
@@ -137,7 +141,8 @@ struct IdentifyResult {
                                                   const model::VehicleParams& base);
 
 /// The result as text: the correlation matrix (if any), one line per parameter with its
-/// standard error and unit, one per fit with its residual RMS (warnings are not included).
+/// standard error and unit, one per fit with its residual RMS, one per note ("note: …";
+/// warnings are not included).
 [[nodiscard]] std::string resultText(const IdentifyResult& result);
 
 }  // namespace geaware::ident
