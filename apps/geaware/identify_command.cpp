@@ -180,6 +180,7 @@ io::Json toJson(const ident::IdentifyResult& r, const IdentifyOptions& opt) {
   }
   doc["warnings"] = r.warnings;
   doc["notes"] = r.notes;
+  doc["base_vehicle"] = opt.vehicle.empty() ? std::string("built-in paper quadrotor") : opt.vehicle;
   if (r.kind == "hover") doc["ground_effect_fitted"] = !r.fits.hover_thrust.has_value();
   const auto optional = [](const std::optional<ident::Estimate>& e) { return e ? estimateJson(*e) : io::Json(); };
   if (r.fits.mixing) {
@@ -240,8 +241,18 @@ int runIdentify(const IdentifyOptions& opt) {
     throw UsageError("--map: a flight fit on an autopilot log needs the vehicle's mass: --mass-kg M or --vehicle FILE "
                      "(the built-in paper quadrotor's mass is not taken for another vehicle)");
   }
+  if (opt.kind == "flight" && opt.vehicle.empty() && opt.mass_kg == 0.0) {
+    throw UsageError("identify flight: a flight fit needs the vehicle's mass: --vehicle FILE or --mass-kg M (the "
+                     "built-in paper quadrotor's 1.696 kg is not taken for another vehicle)");
+  }
   model::VehicleParams base = opt.vehicle.empty() ? io::builtinVehicle() : io::loadVehicleFile(opt.vehicle);
   if (opt.mass_kg > 0.0) base.mass_kg = opt.mass_kg;
+  if (opt.vehicle.empty()) {
+    // Said, not silent (issue 11): the priors of a fit without --vehicle are another vehicle's.
+    std::cerr << "geaware: note: no --vehicle: the priors (b, propeller radius, k_T of the observer, the curves "
+                 "compared) and the file --out merges into are the built-in paper quadrotor's ("
+              << base.name << (opt.mass_kg > 0.0 ? "; the mass from --mass-kg" : ", its mass too") << ")\n";
+  }
   ident::IdentifyResult r = identify(opt, base);
   // Human text on stdout, unless stdout carries the JSON.
   (opt.json == "-" ? std::cerr : std::cout) << ident::resultText(r);

@@ -89,7 +89,7 @@ def cases():
            "--controller", "model:model_indi"],
           FLY + ["--start-hover", "1e9"],
           ["fly", "--quiet", "--scenario", "far.yaml"],
-          ["identify", "rotor", "/dev/zero"], ["identify", "flight", "huge.csv"],
+          ["identify", "rotor", "/dev/zero"], ["identify", "flight", "huge.csv", "--mass-kg", "1.0"],
           ["fly", "--quiet", "--scenario", "/dev/zero"], FLY + ["--vehicle", "/dev/zero"],
           FLY + ["--vehicle", "huge.yaml"]]
     # Numbers: NaN, infinities, negatives, overflow, junk — options and file values.

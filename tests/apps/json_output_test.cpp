@@ -191,8 +191,12 @@ TEST(JsonOutput, IdentifyFlightOnAFlyLogPrintsOnlyJson) {
                     "--quiet --out '" + log.string() + "'")
                 .exit_code,
             0);
-  const Json doc = parse(geaware("identify flight '" + log.string() + "' --json -"), "identify flight");
+  const Json doc = parse(geaware("identify flight '" + log.string() + "' --mass-kg 1.696 --json -"), "identify flight");
   EXPECT_FALSE(doc["parameters"].empty());
+  EXPECT_EQ(doc["base_vehicle"], "built-in paper quadrotor");
+  // Without --vehicle or --mass-kg a flight fit is refused (issue 11: a 37 g vehicle's drag was
+  // fitted with the built-in 1.7 kg quadrotor's mass, 46x off).
+  EXPECT_EQ(geaware("identify flight '" + log.string() + "' --json -").exit_code, 2);
 }
 
 }  // namespace
