@@ -10,6 +10,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,7 @@ struct IdentifyOptions {
   double tilt_limit_deg = 10.0;
   int height_bands = 6;
   bool hover = false;
+  bool accept_warnings = false;         ///< write --out despite blocking warnings
   std::string ground_effect = "paper";  ///< paper: the closed forms; table: values at knots
   double table_top_m = 0.5;             ///< automatic F_G knots up to this height [m]
   std::string table_heights;            ///< explicit knots FROM:TO:STEP (empty: automatic)
@@ -180,6 +182,7 @@ io::Json toJson(const ident::IdentifyResult& r, const IdentifyOptions& opt) {
   }
   doc["warnings"] = r.warnings;
   doc["notes"] = r.notes;
+  doc["blocking_warnings"] = r.blocking;
   doc["base_vehicle"] = opt.vehicle.empty() ? std::string("built-in paper quadrotor") : opt.vehicle;
   if (r.kind == "hover") doc["ground_effect_fitted"] = !r.fits.hover_thrust.has_value();
   const auto optional = [](const std::optional<ident::Estimate>& e) { return e ? estimateJson(*e) : io::Json(); };
@@ -257,6 +260,12 @@ int runIdentify(const IdentifyOptions& opt) {
   // Human text on stdout, unless stdout carries the JSON.
   (opt.json == "-" ? std::cerr : std::cout) << ident::resultText(r);
   for (const auto& w : r.warnings) std::cerr << "geaware: warning: " << w << "\n";
+  for (const auto& w : r.blocking) std::cerr << "geaware: warning: " << w << "\n";
+  if (!opt.out.empty() && !r.blocking.empty() && !opt.accept_warnings) {
+    throw std::runtime_error("--out " + opt.out + " not written: " + std::to_string(r.blocking.size()) +
+                             " fitted value(s) outside their physical range (warnings above); --accept-warnings "
+                             "writes it anyway");
+  }
   if (!opt.out.empty()) {
     r.update.provenance = std::filesystem::path(opt.log).filename().string();
     const auto merged = opt.vehicle.empty()
@@ -298,6 +307,11 @@ Runner addIdentifyCommand(CLI::App& app) {
                     "then goes to stderr)");
     sub->add_option("--report", opts->report, "write an HTML report (parameters, residuals, fit plots) to DIR");
     sub->add_option("--column", opts->columns, "rename a column, DEFAULT=ACTUAL (e.g. fz_N=Fz); repeatable");
+    if (name != "correlations") {
+      sub->add_flag("--accept-warnings", opts->accept_warnings,
+                    "write --out even when a fitted value is outside its physical range (a negative drag band, "
+                    "k_T, g1 or g2 <= 0)");
+    }
     sub->add_option("--loss", opts->loss, "robust loss")->check(CLI::IsMember({"huber", "cauchy", "none"}))->capture_default_str();
     if (name == "rotor") {
       sub->add_option("--voltage-column", opts->voltage_column,

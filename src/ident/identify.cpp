@@ -132,6 +132,10 @@ IdentifyResult hoverKTAlone(const FlightLog& log, const model::VehicleParams& ba
   r.parameters = {{"rotor.k_T_N_per_rpm2", fit.k_T_N_per_rpm2, "N/rpm²"}};
   r.residuals = {{"m·a_ext,z + k_T·Σn² = k_T'·Σn²", fit.stats, "N"}};
   r.warnings = fit.warnings;
+  if (!(fit.k_T_N_per_rpm2.value > 0.0)) {
+    r.blocking.push_back(fmt::format("k_T = {:.4g} fitted at or below 0, outside its physical range (> 0)",
+                                     fit.k_T_N_per_rpm2.value));
+  }
   r.notes.push_back(fmt::format(
       "F_G not fitted: the lowest logged height {:.4g} m is not below {:g} rotor radii ({:.4g} m for "
       "geometry.propeller_radius_m = {:.4g}); k_T alone, with F_G taken as 0 (descend below {:.4g} m to fit g1, g2)",
@@ -163,6 +167,12 @@ IdentifyResult identifyHover(const FlightLog& log, const model::VehicleParams& b
                   {"ground_effect.additional_thrust.g2_m2", fit.g2_m2, "m²"}};
   r.residuals = {{"m·a_ext,z + k_T·Σn² = k_T'·Σn²·(1 + F_G(h))", fit.stats, "N"}};
   r.warnings = fit.warnings;
+  for (const auto& [name, e] : {std::pair{"k_T", fit.k_T_N_per_rpm2}, std::pair{"g1", fit.g1_m2},
+                                std::pair{"g2", fit.g2_m2}}) {
+    if (e.value > 0.0) continue;
+    r.blocking.push_back(fmt::format("{} = {:.4g} ± {:.3g} fitted at or below 0, outside its physical range (> 0)",
+                                     name, e.value, e.std_error));
+  }
   addAdditionalThrust(r.update, fit);  // k_T in hover goes with its g1, g2
   detail::addStatsTables(r);
   PlotData fg{"F_G from the hover descent (eq. 10)", "h [m]", "F_G [-]", {}};
@@ -208,6 +218,16 @@ IdentifyResult identifyFlight(const FlightLog& log, const model::VehicleParams& 
     dy.y.push_back(band.d_y_N_per_mps.value);
   }
   r.warnings = fit.warnings;
+  for (const auto& band : fit.bands) {
+    for (const auto& [axis, d] : {std::pair{"d_x", band.d_x_N_per_mps}, std::pair{"d_y", band.d_y_N_per_mps}}) {
+      if (d.value >= 0.0) continue;
+      // Drag opposes the motion: a negative coefficient is no drag, and --out would write it as 0.
+      r.blocking.push_back(fmt::format("{} at h = {:.3g} m fitted negative ({:.4g} ± {:.3g} N/(m/s)), outside the "
+                                       "physical range d ≥ 0 (a wrong mass, k_T or frame in the log?); --out "
+                                       "would write it as 0",
+                                       axis, band.h_mean_m, d.value, d.std_error));
+    }
+  }
   addDrag(r.update, fit);
   detail::addStatsTables(r);
   dp.curves = {dx, dy};

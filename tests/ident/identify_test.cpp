@@ -249,6 +249,25 @@ TEST(Identify, HoverFarFromTheGroundGivesKTAloneAndSaysSo) {
   EXPECT_TRUE(low.notes.empty());
 }
 
+TEST(Identify, ADragBandFittedNegativeBlocksTheOut) {
+  // Issue 11: a drag band fitted negative was flagged but still written as 0 into --out. The
+  // external acceleration's sign flipped (a frame error): every band fits d < 0, each blocks.
+  const auto& p = geaware_test::paperParams();
+  auto log = ident_test::dragFlights(2);
+  for (auto& a : log.a_ext_W) {
+    for (auto& x : a) x = -x;
+  }
+  ident::IdentifyOptions o;
+  o.height_bands = 4;
+  const auto r = ident::identifyFlight(log, p, o);
+  ASSERT_EQ(r.fits.drag->bands.size(), 4U);
+  EXPECT_EQ(r.blocking.size(), 8U);  // d_x and d_y of each band
+  EXPECT_NE(r.blocking[0].find("fitted negative"), std::string::npos) << r.blocking[0];
+  // The right sign blocks nothing.
+  EXPECT_TRUE(ident::identifyFlight(ident_test::dragFlights(2), p, o).blocking.empty());
+  EXPECT_TRUE(ident::identifyHover(ident_test::hoverDescent(7), p, {}).blocking.empty());
+}
+
 TEST(Identify, FlightRecoversTheDragTablePerBand) {
   const auto& p = geaware_test::paperParams();
   const geaware::model::RotorDragModel drag(p.drag);

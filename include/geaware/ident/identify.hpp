@@ -106,6 +106,9 @@ struct IdentifyResult {
   std::vector<IdentifiedValue> parameters;
   std::vector<FitResiduals> residuals;
   std::vector<std::string> warnings;
+  /// Warnings that block `--out` unless the user accepts them (`--accept-warnings`): a fitted
+  /// value outside its physical range (a drag band fitted negative, k_T ≤ 0, g1 or g2 ≤ 0).
+  std::vector<std::string> blocking;
   std::vector<std::string> notes;  ///< what the fit decided by itself (e.g. F_G not fitted), said plainly
   io::VehicleUpdate update;  ///< empty for the correlations; provenance left to the caller
   Fits fits;
