@@ -21,6 +21,7 @@
 #include "geaware/experiments/campaign.hpp"
 #include "geaware/experiments/campaign_report.hpp"
 #include "geaware/experiments/campaign_summary.hpp"
+#include "geaware/experiments/fault_suite.hpp"
 #include "geaware/experiments/robustness.hpp"
 #include "geaware/experiments/world_setup.hpp"
 #include "geaware/io/controller_params_file.hpp"
@@ -150,6 +151,43 @@ int runRobustnessSuite(const BenchOptions& o) {
   return 0;
 }
 
+/// `--suite faults` (experiments/fault_suite.hpp, docs/reliability.md "Fault campaign").
+int runFaultSuite(const BenchOptions& o) {
+  experiments::FaultSuiteOptions c;
+  c.vehicle = o.vehicle.empty() ? io::builtinVehicle() : io::loadVehicleFile(o.vehicle);
+  c.world = o.truth.empty() ? experiments::defaultWorld(c.vehicle, o.vehicle.empty(), o.vehicle)
+                            : io::resolveTruth(o.truth, {});
+  if (!o.cases.empty()) {
+    c.cases = pick(c.cases, o.cases, "--cases", [](const experiments::FaultCase& k) { return k.name; });
+    if (c.cases.front().name != "none") {
+      throw UsageError("--cases: the fault suite compares every case with \"none\": list it first");
+    }
+  }
+  if (!o.controllers.empty()) {
+    c.controllers = pick(c.controllers, o.controllers, "--controllers",
+                         [](const experiments::SuiteController& k) { return k.name; });
+  }
+  if (!o.controller_params.empty()) c.controller_values = io::loadControllerParamsFile(o.controller_params);
+  c.seeds = o.seeds;
+  c.first_seed = o.first_seed;
+  c.jobs = o.jobs;
+  TerminalProgress progress("geaware bench", o.quiet);
+  c.progress = &progress;
+  const experiments::FaultSuiteResult r = experiments::runFaultSuite(c);
+  progress.end();
+  const io::RunInfo run = runInfo(r.seeds, {o.vehicle, truthInputFile(o.truth), o.controller_params});
+  std::FILE* human = o.json == "-" ? stderr : stdout;
+  fmt::print(human, "{}\nworld: {}\n{}", commandLine(), c.world->source, experiments::formatFaultSuite(r));
+  std::fflush(human);
+  if (!o.json.empty()) writeJsonOutput(o.json, experiments::faultSuiteJson(r), run);
+  if (o.check) {
+    for (const auto& chk : r.checks) {
+      if (!chk.pass) return 3;
+    }
+  }
+  return 0;
+}
+
 int runBench(const BenchOptions& o) {
   if (o.truth_mismatch) {
     throw UsageError(
@@ -158,6 +196,7 @@ int runBench(const BenchOptions& o) {
         "(today's --truth-mismatch; docs/truth-file.md)");
   }
   if (o.suite == "robustness") return runRobustnessSuite(o);
+  if (o.suite == "faults") return runFaultSuite(o);
   experiments::CampaignOptions c;
   c.vehicle = o.vehicle.empty() ? io::builtinVehicle() : io::loadVehicleFile(o.vehicle);
   c.world = o.truth.empty() ? experiments::defaultWorld(c.vehicle, o.vehicle.empty(), o.vehicle)
@@ -223,15 +262,16 @@ Runner addBenchCommand(CLI::App& app) {
   cmd->add_option("--suite", o->suite,
                   "'table': the paper's Table I and hover experiment; 'robustness': every Table I "
                   "configuration, indi:indi and recommended in worlds changed after the "
-                  "calibration (docs/robustness.md)")
-      ->check(CLI::IsMember({"table", "robustness"}))
+                  "calibration (docs/robustness.md); 'faults': the paper's configuration, INDI and "
+                  "recommended with a motor, sensor, battery or gust fault mid-flight (docs/reliability.md)")
+      ->check(CLI::IsMember({"table", "robustness", "faults"}))
       ->capture_default_str();
   cmd->add_option("--cases", o->cases,
-                  "robustness: fly only these cases, comma separated (default: all; names in "
+                  "robustness, faults: fly only these cases, comma separated (default: all; names in "
                   "docs/robustness.md, e.g. none,mass+10%)")
       ->delimiter(',');
   cmd->add_option("--controllers", o->controllers,
-                  "robustness: fly only these configurations, comma separated (default: all; e.g. "
+                  "robustness, faults: fly only these configurations, comma separated (default: all; e.g. "
                   "model:model_indi,recommended)")
       ->delimiter(',');
   addVehicleOption(cmd, o->vehicle,
@@ -282,13 +322,17 @@ Runner addBenchCommand(CLI::App& app) {
                                                      std::to_string(o->seeds) + " - 1 is above 2^64 - 1");
     }
     if (o->png && o->report.empty()) throw CLI::ValidationError("--png", "--png needs --report DIR");
-    if (o->suite == "robustness" &&
+    if (o->suite != "table" &&
         (!o->only.empty() || o->no_turbulence || o->ground_effect != "paper")) {
       throw CLI::ValidationError("--suite", "--only, --no-turbulence and --ground-effect apply to "
                                             "--suite table only");
     }
-    if (o->suite != "robustness" && (!o->cases.empty() || !o->controllers.empty())) {
-      throw CLI::ValidationError("--cases", "--cases and --controllers need --suite robustness");
+    if (o->suite == "table" && (!o->cases.empty() || !o->controllers.empty())) {
+      throw CLI::ValidationError("--cases", "--cases and --controllers need --suite robustness or faults");
+    }
+    if (o->suite == "faults" && (!o->report.empty() || !o->cache.empty() || o->no_cache)) {
+      throw CLI::ValidationError("--suite", "--report and --cache apply to --suite table and robustness "
+                                            "(the fault suite flies no neural network and has no report page yet)");
     }
   });
   return [o]() { return runBench(*o); };

@@ -82,6 +82,9 @@ void validateAdditions(const ControllerParams& p, model::FieldChecker& c) {
   c.range("guard_brake_mps2", p.guard_brake_mps2, 0.0, 50.0, kExclusive, "m/s²");
   c.range("guard_reaction_time_s", p.guard_reaction_time_s, 0.0, 1.0, kInclusive, "s");
   c.range("guard_rate_per_s", p.guard_rate_per_s, 0.0, 100.0, kExclusive, "1/s");
+  c.range("rotor_speed_ki_per_s", p.rotor_speed_ki_per_s, 0.0, 100.0, kInclusive, "1/s");
+  c.range("rotor_speed_limit_throttle", p.rotor_speed_limit_throttle, 0.0, 1.0, kInclusive, "throttle");
+  c.range("rotor_speed_lag_s", p.rotor_speed_lag_s, 0.0, 1.0, kInclusive, "s");
 }
 
 }  // namespace
@@ -167,11 +170,13 @@ void setConfiguration(ControllerParams& p, const ControllerParams& q) {
 }  // namespace
 
 std::string configurationName(const ControllerParams& p) {
-  if (sameConfiguration(p, recommendedControllerParams())) return "recommended";
+  const char* loop = p.rotor_speed_ki_per_s > 0.0 ? "+speedloop" : "";
+  if (sameConfiguration(p, recommendedControllerParams())) return std::string("recommended") + loop;
   std::string name = std::string(toString(p.acceleration)) + ":" + toString(p.torque);
   if (p.dob_time_constant_s > 0.0) name += "+dob";
   if (p.k_i_per_s3.any()) name += "+integral";
   if (p.clearance_guard) name += "+guard";
+  name += loop;
   return name;
 }
 

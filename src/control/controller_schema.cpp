@@ -79,6 +79,12 @@ std::vector<S> loopSpecs() {
              [](P& p) -> double& { return p.guard_reaction_time_s; }),
       number("clearance_guard.rate_per_s", "1/s", {0.0, 100.0, kExclusive},
              [](P& p) -> double& { return p.guard_rate_per_s; }),
+      number("rotor_speed_loop.k_i_per_s", "1/s", {0.0, 100.0, kInclusive},
+             [](P& p) -> double& { return p.rotor_speed_ki_per_s; }),
+      number("rotor_speed_loop.limit_throttle", "", {0.0, 1.0, kInclusive},
+             [](P& p) -> double& { return p.rotor_speed_limit_throttle; }),
+      number("rotor_speed_loop.motor_lag_s", "s", {0.0, 1.0, kInclusive},
+             [](P& p) -> double& { return p.rotor_speed_lag_s; }),
   };
 }
 
@@ -165,6 +171,11 @@ ControllerParams applyParameters(const ControllerParams& configuration,
     p.guard_reaction_time_s = values.guard_reaction_time_s;
     p.guard_rate_per_s = values.guard_rate_per_s;
   }
+  // The rotor-speed loop is a loop setting like the thrust correction: the file switches it on
+  // (k_i_per_s > 0) for whatever configuration flies.
+  p.rotor_speed_ki_per_s = values.rotor_speed_ki_per_s;
+  p.rotor_speed_limit_throttle = values.rotor_speed_limit_throttle;
+  p.rotor_speed_lag_s = values.rotor_speed_lag_s;
   return p;
 }
 

@@ -453,6 +453,12 @@ EskfOutput Eskf::output() const noexcept {
     out.accel_B = e.accel_B - e.x.accel_bias_B;
   }
   out.covariance_diagonal = e.P.diagonal();
+  if (initialised_ && e.t_s - last_fused_t_s_ > params_.pose_timeout_s) out.flags |= kEskfPoseStale;
+  if (e.has_imu && (e.gyro_B.cwiseAbs().maxCoeff() >= params_.imu_gyro_range_rad_per_s ||
+                    e.accel_B.cwiseAbs().maxCoeff() >= params_.imu_accel_range_m_per_s2)) {
+    out.flags |= kEskfImuClipped;
+  }
+  if (consecutive_rejections_ > 0) out.flags |= kEskfPoseRejected;
   return out;
 }
 

@@ -49,6 +49,9 @@ std::vector<model::FieldError> EskfParams::validate() const {
   c.positive("eskf.init_gyro_bias_std_radps", init_gyro_bias_std_radps);
   c.positive("eskf.gate_chi2", gate_chi2);
   c.positive("eskf.max_imu_gap_s", max_imu_gap_s);
+  c.positive("eskf.pose_timeout_s", pose_timeout_s);
+  c.positive("eskf.imu_gyro_range_rad_per_s", imu_gyro_range_rad_per_s);
+  c.positive("eskf.imu_accel_range_m_per_s2", imu_accel_range_m_per_s2);
   c.positive("eskf.gravity_mps2", gravity_mps2);
   if (max_consecutive_rejections < 0) {
     c.fail("eskf.max_consecutive_rejections", std::to_string(max_consecutive_rejections),

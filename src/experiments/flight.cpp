@@ -68,6 +68,10 @@ const char* controllerFlagName(int bit) noexcept {
       return "clearance_guard";
     case 8:
       return "integral_held";
+    case 9:
+      return "motor_failure";
+    case 10:
+      return "terminated";
     default:
       return "?";
   }
@@ -128,6 +132,7 @@ class FlightLoop {
         lattice_(s.lattice.value_or(estimation::LatticeHeightParams::forVehicle(s.vehicle))),
         observer_(vehicle_, observerParamsOf(s.controller)),
         bins_(s.hover_bins),
+        faults_(s.faults, s.seed, s.start_hover_s),
         telemetry_rpm_(Eigen::Vector4d::Constant(x0_.n_rpm[0])) {  // replaced by the first sample
     if (s.disturbances.turbulence && s.disturbances.turbulence_params.per_rotor) {
       plant_.addContribution(std::make_unique<sim::RotorTurbulence>(
@@ -141,6 +146,7 @@ class FlightLoop {
           std::make_unique<sim::Unsteadiness>(s.disturbances.unsteadiness_params, s.seed));
     }
     if (s.disturbances.wind) wind_.emplace(s.disturbances.wind_params, s.seed);
+    if (auto kick = faults_.kickContribution()) plant_.addContribution(std::move(kick));
     // Motors at the throttle that holds the initial rotor speed.
     throttle_.fill(plant_.throttleForSteadySpeed(x0_.n_rpm[0]));
     if (closed_) controller_.emplace(vehicle_, s.controller, s.residual);
@@ -166,7 +172,13 @@ class FlightLoop {
       }
       if (k >= last_step) break;
       // 5. Plant step with the held throttles.
-      if (wind_) plant_.setWind_W(wind_->advance(dt_));
+      if (faults_.empty()) {
+        if (wind_) plant_.setWind_W(wind_->advance(dt_));
+      } else {
+        const Eigen::Vector3d base = wind_ ? wind_->advance(dt_) : Eigen::Vector3d::Zero();
+        plant_.setWind_W(base + faults_.windAt(t));
+        faults_.applyToMotors(t, plant_);
+      }
       const sim::StepResult step = plant_.step(throttle_);
       if (step.crash) {
         result_.crash = step.crash;
@@ -188,8 +200,9 @@ class FlightLoop {
   /// Stages 1–3: sensors at the true state, the estimator, the height from the ranger.
   void sense(double t) noexcept {
     const sim::PlantState& x = plant_.state();
-    const sim::SensorReadings r = sensors_.step(x, terrain_.get());
+    sim::SensorReadings r = sensors_.step(x, terrain_.get());
     if (!closed_) return;
+    if (!faults_.empty()) faults_.onSensors(t, r);
     // 2. Estimator: the IMU sample first, then the pose delivered now.
     if (r.imu) {
       (void)eskf_->addImu(*r.imu);
@@ -246,6 +259,12 @@ class FlightLoop {
     tick_.controller_active = closed_ && eskf_->initialised() && have_telemetry_;
     if (tick_.controller_active) {
       const estimation::EskfOutput eo = eskf_->output();
+      tick_.eskf_flags = eo.flags;
+      if (tick_.in_trajectory) {
+        for (std::size_t b = 0; b < result_.estimation.eskf_flag_ticks.size(); ++b) {
+          if ((eo.flags >> b) & 1u) ++result_.estimation.eskf_flag_ticks[b];
+        }
+      }
       in.estimate = eo.estimate;
       in.gyro_B = eo.gyro_B;
       in.accel_B = eo.accel_B;
@@ -263,6 +282,7 @@ class FlightLoop {
       tick_.attitude_error_rad = model::angleBetween(x.q_WB, tick_.output.q_des_WB);
     } else {
       tick_.disturbance = estimation::DisturbanceEstimate{};
+      tick_.eskf_flags = 0;
       in.external_accel_W.setZero();
       in.external_accel_valid = false;
       tick_.output = control::ControllerOutput{};
@@ -270,6 +290,7 @@ class FlightLoop {
       tick_.attitude_error_rad = 0.0;
     }
     tick_.throttle = throttle_;
+    tick_.fault_bits = faults_.empty() ? 0u : faults_.activeBits(t);
     ++result_.control_ticks;
   }
 
@@ -317,6 +338,7 @@ class FlightLoop {
   EstimationObserver estimation_;
   ObserverList metrics_;
   StreamingRms est_h_;
+  FaultInjector faults_;  // scenario.faults: between the truth and the controller side
   // Latest sensor-derived values the controller flies on.
   Eigen::Vector4d telemetry_rpm_;
   bool have_telemetry_ = false;

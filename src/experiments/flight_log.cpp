@@ -80,7 +80,10 @@ const std::vector<std::string_view>& flightLogColumns() {
       // controller-side height, velocity, attitude and rotor telemetry, and the external
       // acceleration ã_ext = R_WB·f_B − z_B·k_T·Σn²/m of the nominal vehicle (unfiltered)
       "h_m", "vx_mps", "vy_mps", "vz_mps", "qw", "qx", "qy", "qz", "ax_ext_mps2", "ay_ext_mps2",
-      "az_ext_mps2", "n1_rpm", "n2_rpm", "n3_rpm", "n4_rpm"};
+      "az_ext_mps2", "n1_rpm", "n2_rpm", "n3_rpm", "n4_rpm",
+      // estimation::EskfFlag bits (1 pose stale, 2 IMU clipped, 4 pose rejected) and the
+      // injected faults active (bit i: the scenario's fault i; experiments/faults.hpp)
+      "eskf_flags", "fault_bits"};
   return columns;
 }
 
@@ -167,6 +170,8 @@ void CsvFlightLog::onTick(const FlightTick& k) noexcept {
   const double thrust_N = k_T_N_per_rpm2_ * in.rotor_speeds_rpm.squaredNorm();
   w.vec3(R * in.accel_B - R.col(2) * (thrust_N / mass_kg_));
   for (int i = 0; i < 4; ++i) w.num(in.rotor_speeds_rpm(i));
+  w.integer(k.eskf_flags);
+  w.integer(k.fault_bits);
   w.end();
 }
 

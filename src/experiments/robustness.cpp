@@ -276,6 +276,9 @@ CalibratedWorld calibrate(const RobustnessOptions& o, const std::string& name,
   return w;
 }
 
+
+}  // namespace
+
 SuiteFlight toSuiteFlight(std::uint64_t seed, const FlightResult& fr) {
   SuiteFlight f;
   f.seed = seed;
@@ -289,8 +292,6 @@ SuiteFlight toSuiteFlight(std::uint64_t seed, const FlightResult& fr) {
   f.guard_active_s = fr.guard_active_s;
   return f;
 }
-
-}  // namespace
 
 RobustnessResult runRobustness(const RobustnessOptions& o) {
   checkOptions(o);

@@ -158,6 +158,7 @@ std::vector<ScenarioProblem> validate(const FlightScenario& s, ScenarioStage sta
   }
   append(out, s.sensors.validate(), "sensors.");
   append(out, s.eskf.validate(), "eskf.");
+  append(out, validate(s.faults), "");
   if (std::abs(s.eskf.imu_rate_hz - s.sensors.imu.rate_Hz) > 1e-9 * s.sensors.imu.rate_Hz) {
     out.push_back({"eskf.imu_rate_hz", show(s.eskf.imu_rate_hz),
                    "the IMU's rate, sensors.imu.rate_Hz = " + show(s.sensors.imu.rate_Hz)});

@@ -109,7 +109,7 @@ void Motors::beginStep(const std::array<double, 4>& throttle, double dt_s) noexc
   for (std::size_t i = 0; i < 4; ++i) {
     const double t = std::clamp(throttle[i], 0.0, 1.0);
     const double n = std::sqrt(std::max((c.c2_rpm2 * t + c.c1_rpm2) * t + c.c0_rpm2, 0.0));
-    n_ss_rpm_[i] = std::clamp(n * scale, motor_.min_speed_rpm, motor_.max_speed_rpm);
+    n_ss_rpm_[i] = std::clamp(n * scale, motor_.min_speed_rpm, motor_.max_speed_rpm) * speed_scale_[i];
   }
   if (dt_s != dt_s_) {
     // The decays at RK4's stage times, computed once per step length (a fixed-step run pays

@@ -97,6 +97,8 @@ TEST(ControllerParamsFile, WrittenFileReadsBackBitForBit) {
   v.guard_margin_m = 0.0321;
   v.guard_reaction_time_s = 0.07;
   v.dob_time_constant_s = 0.3;
+  v.rotor_speed_limit_throttle = 0.25;
+  v.rotor_speed_lag_s = 0.05;
   ASSERT_EQ(problemsOf(io::controllerParamsYaml(v)), "");
   const auto back = io::parseControllerParamsYaml(io::controllerParamsYaml(v), "t");
   EXPECT_TRUE(control::sameParameterValues(back, v)) << io::controllerParamsYaml(back);

@@ -85,6 +85,14 @@ enum ControllerFlag : std::uint32_t {
   kFlagThrustSaturated = 1u << 6,    ///< thrust clipped to the rotor-speed range
   kFlagClearanceGuard = 1u << 7,     ///< the clearance guard raised the height or vertical command
   kFlagIntegralHeld = 1u << 8,       ///< anti-windup held or clipped the position integral
+  /// A rotor has turned at less than half its command for 0.15 s (latched): the motor or its
+  /// ESC failed (monitorMotors(); docs/reliability.md, "Fault campaign").
+  kFlagMotorFailure = 1u << 9,
+  /// Flight termination (latched): after a motor failure the vehicle tilted past 60°, so every
+  /// throttle is 0 — PX4's failure detector does the same (FD_FAIL_R/P, 60° by default): a
+  /// quadrotor that lost a motor cannot be held, and falling with stopped rotors harms less than
+  /// flying away inverted at full power.
+  kFlagTerminated = 1u << 10,
 };
 
 /// Commands of one update: the throttles and every intermediate for logging.
@@ -134,6 +142,10 @@ class Controller {
 
   /// update() on finite inputs; its result may be non-finite when they are huge.
   [[nodiscard]] ControllerOutput step(const ControllerInput& in) noexcept;
+  /// The motor monitor after a finite step: flags a failed motor, terminates when it tipped.
+  void monitorMotors(const ControllerInput& in, ControllerOutput& out) noexcept;
+  /// The per-rotor speed loop's throttle corrections (zero when off).
+  [[nodiscard]] Eigen::Vector4d rotorSpeedCorrection(const ControllerInput& in) noexcept;
 
   /// The filtered measurements of one tick (update(), step 1).
   struct Measured {
@@ -230,6 +242,15 @@ class Controller {
     bool have_dob_residual_ = false;
     Eigen::Vector3d position_integral_ms_ = Eigen::Vector3d::Zero();  // ∫e_p dt [m·s]
     std::uint32_t last_flags_ = kFlagNone;
+    // The motor monitor: the last rotor-speed command, how long each rotor has lagged it by
+    // half, and the latched failure and termination.
+    Eigen::Vector4d last_n_des_rpm_ = Eigen::Vector4d::Zero();
+    std::array<double, 4> motor_short_s_{};
+    bool motor_failed_ = false;
+    Eigen::Vector4d rotor_speed_integral_ = Eigen::Vector4d::Zero();  // [throttle]
+    Eigen::Vector4d rotor_speed_model_rpm_ = Eigen::Vector4d::Zero();  // the command through the motor lag
+    bool have_rotor_speed_model_ = false;
+    bool terminated_ = false;
   };
   Memory mem_;
 };

@@ -90,6 +90,18 @@ struct ControllerParams {
   /// γ, the rate at which ψ may approach zero (ψ̇ ≥ −γ·ψ): while sinking, the guard's lower bound
   /// on the commanded vertical acceleration is (|ḣ| − γ·ψ)/(t_r + |ḣ|/a_b), at most a_b [1/s].
   double guard_rate_per_s = 4.0;
+  /// K_n, the per-rotor speed loop: each motor's throttle gains K_n·∫(n_des − n)/n_max dt, so an
+  /// ESC that reaches less speed than the throttle curve promises (a sagging battery, a worn
+  /// motor) is brought to its command; the paper's throttle is the curve's open-loop inverse
+  /// plus one shared correction. 0: off, in every configuration `recommended` included (a loop
+  /// setting, switched on by a controller-parameters file) [1/s].
+  double rotor_speed_ki_per_s = 0.0;
+  /// Bound on each motor's speed-loop correction [throttle].
+  double rotor_speed_limit_throttle = 0.3;
+  /// The speed loop compares each rotor's speed with its command passed through this first-order
+  /// lag (the motor's time constant plus the ESC/link dead time), so that only a gain error —
+  /// not the motors' ordinary lag behind a changing command — is integrated [s].
+  double rotor_speed_lag_s = 0.04;
 
   /// Whether any of geaware's additions is on.
   [[nodiscard]] bool hasAdditions() const noexcept;

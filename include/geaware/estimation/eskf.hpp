@@ -58,6 +58,13 @@ struct EskfParams {
   /// Oldest capture time a pose may have, relative to the newest IMU sample [s]; must fit in the
   /// history buffer (kHistory samples at imu_rate_hz).
   double max_mocap_latency_s = 0.2;
+  /// No pose fused for longer than this raises kEskfPoseStale (dead reckoning on the IMU) [s].
+  double pose_timeout_s = 0.1;
+  /// The IMU's configured full-scale ranges: a sample at either raises kEskfImuClipped. Defaults:
+  /// the ±2000 °/s and ±16 g of a flight controller's MEMS IMU (ICM-20602, BMI088 class)
+  /// [rad/s], [m/s²].
+  double imu_gyro_range_rad_per_s = 34.906585;
+  double imu_accel_range_m_per_s2 = 156.9064;
   /// An IMU interval longer than this is still integrated, but counted as a gap [s].
   double max_imu_gap_s = 0.05;
   /// false: fuse every pose as if captured now (the naive filter; kept for comparison and tests).
@@ -112,6 +119,14 @@ struct EskfCounters {
 };
 
 /// The filter's output at the newest IMU time.
+/// Named conditions of the estimate a user can see in the flight log (EskfOutput::flags).
+enum EskfFlag : std::uint32_t {
+  kEskfFlagNone = 0,
+  kEskfPoseStale = 1u << 0,     ///< no pose fused for longer than pose_timeout_s: IMU dead reckoning
+  kEskfImuClipped = 1u << 1,    ///< the newest IMU sample is at a full-scale range
+  kEskfPoseRejected = 1u << 2,  ///< the last pose(s) failed the innovation gate
+};
+
 struct EskfOutput {
   double t_s = 0.0;  ///< time of the newest IMU sample [s]
   bool initialised = false;
@@ -123,6 +138,7 @@ struct EskfOutput {
   /// Variances of (δp, δv, δθ, δb_a, δb_g) [m², m²/s², rad², m²/s⁴, rad²/s²].
   Eigen::Matrix<double, 15, 1> covariance_diagonal = Eigen::Matrix<double, 15, 1>::Zero();
   double last_innovation_chi2 = 0.0;  ///< Mahalanobis² of the last pose [-]
+  std::uint32_t flags = kEskfFlagNone;  ///< EskfFlag bits
 };
 
 class Eskf {

@@ -35,6 +35,7 @@
 #include "geaware/estimation/disturbance_observer.hpp"
 #include "geaware/estimation/eskf.hpp"
 #include "geaware/estimation/lattice_height.hpp"
+#include "geaware/experiments/faults.hpp"
 #include "geaware/experiments/tracking_metrics.hpp"
 #include "geaware/model/vehicle_params.hpp"
 #include "geaware/sim/disturbances.hpp"
@@ -123,6 +124,8 @@ struct FlightScenario {
   /// the whole trajectory (nominal vehicle, ground effect at the reference's height above the
   /// terrain), sampled at the control rate.
   bool check_feasibility = true;
+  /// Faults injected on purpose (experiments/faults.hpp; the fault campaign); empty: none.
+  std::vector<Fault> faults;
 };
 
 /// One problem with a scenario, e.g. {"controller.rate_hz", "300", "plant_rate_hz / rate_hz
@@ -152,8 +155,8 @@ enum class ScenarioStage {
                                                     ScenarioStage stage = ScenarioStage::kFlight);
 
 /// Number of controller flag bits (control::ControllerFlag) counted by the runner.
-inline constexpr int kControllerFlagBits = 9;
-/// Name of flag bit i ("non_finite_input", "height_invalid", …), "?" outside [0, 9).
+inline constexpr int kControllerFlagBits = 11;
+/// Name of flag bit i ("non_finite_input", "height_invalid", …), "?" outside [0, 11).
 [[nodiscard]] const char* controllerFlagName(int bit) noexcept;
 
 /// Angle error E(h) of one height bin: the angle of the rotation between the controller's
@@ -178,6 +181,8 @@ struct EstimationSummary {
   double velocity_rmse_mps = 0.0;
   double attitude_rmse_deg = 0.0;
   double height_rmse_m = 0.0;  ///< ranger height vs true height, valid frames of the trajectory
+  /// Control ticks with each estimation::EskfFlag bit set: pose stale, IMU clipped, pose rejected.
+  std::array<std::uint64_t, 3> eskf_flag_ticks{};
 };
 
 struct FlightResult {
@@ -219,6 +224,8 @@ struct FlightTick {
   sim::PlantState truth;             ///< the true state at t (observers only)
   double true_height_m = 0.0;        ///< rotor-plane centre above the terrain under it [m]
   double attitude_error_rad = 0.0;   ///< angle between desired and true attitude [rad]
+  std::uint32_t eskf_flags = 0;      ///< estimation::EskfFlag bits of the estimate the controller got
+  std::uint32_t fault_bits = 0;      ///< bit i: scenario.faults[i] active (experiments/faults.hpp)
 };
 
 /// Receives every control tick. Must not throw from onTick (the runner is noexcept inside the

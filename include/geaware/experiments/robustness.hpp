@@ -134,6 +134,9 @@ struct SuiteFlight {
   std::optional<double> guard_active_s;  ///< empty: the controller has no guard [s]
 };
 
+/// A flight's result as a suite flight (metrics in cm, the strike, the guard's time).
+[[nodiscard]] SuiteFlight toSuiteFlight(std::uint64_t seed, const FlightResult& fr);
+
 /// One cell of a suite: a case × a controller × a height/speed, over seeds.
 struct SuiteCell {
   std::string case_name;

@@ -13,6 +13,7 @@
 // with Ω_i the speed in rad/s and d_i = −yaw_i the spin direction (a rotor spinning about +z
 // pushes the body about −z). ṅ in rpm/s is converted to rad/s² (model::kRpmToRadPerSec).
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -122,6 +123,10 @@ class Motors {
   }
 
   /// ESC steady speed for a throttle at a given battery terminal voltage [rpm].
+  /// A fault: motor i's ESC reaches `scale` ∈ [0, 1] of the speed its throttle asks for from the
+  /// next step on (0: the motor stops; experiments/faults.hpp). Default 1. No allocation.
+  void setSpeedScale(std::size_t i, double scale) noexcept { speed_scale_[i & 3u] = std::clamp(scale, 0.0, 1.0); }
+  [[nodiscard]] double speedScale(std::size_t i) const noexcept { return speed_scale_[i & 3u]; }
   [[nodiscard]] double steadySpeedRpm(double throttle, double voltage_V) const noexcept;
 
   /// The throttle that holds rotor speed n in steady state, with the battery at its present
@@ -144,6 +149,7 @@ class Motors {
   std::array<double, 4> yaw_sign_{};
   std::array<double, 4> n_rpm_{};     // speeds at the start of the step
   std::array<double, 4> n_ss_rpm_{};  // targets of the current step
+  std::array<double, 4> speed_scale_{1.0, 1.0, 1.0, 1.0};  // faults: see setSpeedScale
   double dt_s_ = 0.0;
   double decay_half_ =
       1.0;  // e^(−dt/2τ) and e^(−dt/τ) for the step length dt_s_ (RK4's stage times)

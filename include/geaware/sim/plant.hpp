@@ -164,6 +164,8 @@ class Plant {
   [[nodiscard]] const TruthParams& params() const noexcept { return params_; }
   [[nodiscard]] const PlantConfig& config() const noexcept { return config_; }
   [[nodiscard]] const Motors& motors() const noexcept { return motors_; }
+  /// A motor fault from the next step on (Motors::setSpeedScale).
+  void setMotorSpeedScale(std::size_t i, double scale) noexcept { motors_.setSpeedScale(i, scale); }
   [[nodiscard]] const Terrain* terrain() const noexcept { return terrain_.get(); }
   /// Aerodynamic outputs (per-rotor thrust and gain) at the end of the last step, from RK4's
   /// last stage like PlantState::a_W, with the step's ground-effect factors (all zero when the
