@@ -2,12 +2,19 @@
 # geaware — the two commands of the README, and their parts.
 #   make demo   install missing packages, build, run the main job on the default vehicle
 #   make test   install missing packages, build, run the whole test suite
+#   make test-fuzz      the fuzz targets of the clang-14 tree (build-clang), the fuzz label run
+#   make build-clang    the whole project with clang-14 (-Werror, sanitizers)
+#   make fuzz           each fuzz target for FUZZ_S seconds (docs/reliability.md, "Fuzzing")
 BUILD_DIR  ?= build
 BUILD_TYPE ?= Release
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 GENERATOR  := $(shell command -v ninja >/dev/null 2>&1 && echo Ninja || echo "Unix Makefiles")
 
-.PHONY: all deps configure build demo test bench clean
+CLANG_DIR    ?= build-clang
+FUZZ_S       ?= 600
+
+.PHONY: all deps configure build demo test bench clean \
+        configure-clang build-clang test-fuzz fuzz
 
 all: build
 
@@ -32,5 +39,26 @@ test: build
 bench: build
 	$(BUILD_DIR)/bench/geaware_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 
+# clang-14 with -Werror like GCC; asserts on (-O2 without NDEBUG), sanitizers and libFuzzer's
+# coverage instrumentation on everything.
+configure-clang: deps
+	@if [ ! -f $(CLANG_DIR)/CMakeCache.txt ]; then \
+	  CC=clang-14 CXX=clang++-14 cmake -S . -B $(CLANG_DIR) -G "$(GENERATOR)" \
+	        -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -g1" \
+	        "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O2 -g1" -DGEAWARE_FUZZ=ON \
+	        -DGEAWARE_SANITIZE=address,undefined; \
+	fi
+
+build-clang: configure-clang
+	cmake --build $(CLANG_DIR) -j $(JOBS)
+
+test-fuzz: configure-clang
+	cmake --build $(CLANG_DIR) -j $(JOBS) --target fuzz-targets
+	cd $(CLANG_DIR) && ctest -L fuzz --output-on-failure -j $(JOBS)
+
+fuzz: configure-clang
+	cmake -DGEAWARE_FUZZ_LONG_S=$(FUZZ_S) $(CLANG_DIR) >/dev/null
+	cmake --build $(CLANG_DIR) -j $(JOBS) --target fuzz-long
+
 clean:
-	rm -rf $(BUILD_DIR)
+	rm -rf $(BUILD_DIR) $(CLANG_DIR)

@@ -9,3 +9,18 @@ if(GEAWARE_SANITIZE)
   add_link_options(-fsanitize=${GEAWARE_SANITIZE})
   message(STATUS "geaware: sanitizers ${GEAWARE_SANITIZE}")
 endif()
+
+# -DGEAWARE_FUZZ=ON (clang only; GCC has no libFuzzer) builds the fuzz targets of fuzz/ and
+# compiles the whole tree with libFuzzer's coverage instrumentation (-fsanitize=fuzzer-no-link),
+# so that the fuzzer sees the branches of the parsers it drives. Use it with
+# -DGEAWARE_SANITIZE=address,undefined (the Makefile's clang tree does): a finding is then a
+# sanitizer report, not only a crash.
+option(GEAWARE_FUZZ "Build the libFuzzer targets of fuzz/ (clang only)" OFF)
+if(GEAWARE_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "GEAWARE_FUZZ needs clang (libFuzzer); configure with "
+                        "CC=clang-14 CXX=clang++-14 (`make test-fuzz` does)")
+  endif()
+  add_compile_options(-fsanitize=fuzzer-no-link)
+  message(STATUS "geaware: fuzz targets, coverage instrumentation")
+endif()
