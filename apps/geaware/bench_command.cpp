@@ -109,12 +109,22 @@ std::string checkFiles(const BenchOptions& o) {
   return cache;
 }
 
+/// The vehicle file the belief starts from: --vehicle, or the built-in one.
+model::VehicleParams benchVehicle(const BenchOptions& o) {
+  return o.vehicle.empty() ? io::builtinVehicle() : io::loadVehicleFile(o.vehicle);
+}
+
+/// The world the rigs and flights run in: --truth, or the default world of `vehicle`.
+sim::World benchWorld(const BenchOptions& o, const model::VehicleParams& vehicle) {
+  return o.truth.empty() ? experiments::defaultWorld(vehicle, o.vehicle.empty(), o.vehicle)
+                         : io::resolveTruth(o.truth, {});
+}
+
 /// `--suite robustness` (experiments/robustness.hpp, docs/robustness.md).
 int runRobustnessSuite(const BenchOptions& o) {
   experiments::RobustnessOptions c;
-  c.vehicle = o.vehicle.empty() ? io::builtinVehicle() : io::loadVehicleFile(o.vehicle);
-  c.world = o.truth.empty() ? experiments::defaultWorld(c.vehicle, o.vehicle.empty(), o.vehicle)
-                            : io::resolveTruth(o.truth, {});
+  c.vehicle = benchVehicle(o);
+  c.world = benchWorld(o, c.vehicle);
   if (!o.cases.empty()) {
     c.cells = pick(c.cells, o.cases, "--cases",
                    [](const experiments::Perturbation& p) { return p.name; });
@@ -154,9 +164,8 @@ int runRobustnessSuite(const BenchOptions& o) {
 /// `--suite faults` (experiments/fault_suite.hpp, docs/reliability.md "Fault campaign").
 int runFaultSuite(const BenchOptions& o) {
   experiments::FaultSuiteOptions c;
-  c.vehicle = o.vehicle.empty() ? io::builtinVehicle() : io::loadVehicleFile(o.vehicle);
-  c.world = o.truth.empty() ? experiments::defaultWorld(c.vehicle, o.vehicle.empty(), o.vehicle)
-                            : io::resolveTruth(o.truth, {});
+  c.vehicle = benchVehicle(o);
+  c.world = benchWorld(o, c.vehicle);
   if (!o.cases.empty()) {
     c.cases = pick(c.cases, o.cases, "--cases", [](const experiments::FaultCase& k) { return k.name; });
     if (c.cases.front().name != "none") {
@@ -198,9 +207,8 @@ int runBench(const BenchOptions& o) {
   if (o.suite == "robustness") return runRobustnessSuite(o);
   if (o.suite == "faults") return runFaultSuite(o);
   experiments::CampaignOptions c;
-  c.vehicle = o.vehicle.empty() ? io::builtinVehicle() : io::loadVehicleFile(o.vehicle);
-  c.world = o.truth.empty() ? experiments::defaultWorld(c.vehicle, o.vehicle.empty(), o.vehicle)
-                            : io::resolveTruth(o.truth, {});
+  c.vehicle = benchVehicle(o);
+  c.world = benchWorld(o, c.vehicle);
   if (!o.controller_params.empty()) c.controller_values = io::loadControllerParamsFile(o.controller_params);
   c.seeds = o.seeds;
   c.first_seed = o.first_seed;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The fault campaign's text summary and JSON (experiments/fault_suite.hpp).
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 #include <fmt/format.h>
@@ -19,28 +20,39 @@ std::string cellText(const FaultCell& c) {
   return s;
 }
 
-/// Flags raised, summed over the cell's flights, as "motor_failure 120, pose_stale 98".
-std::string flagsText(const FaultCell& c) {
-  std::uint64_t mf = 0, ps = 0, ic = 0, pr = 0, hi = 0;
-  int term = 0;
+/// The flags a cell's flights raised: control ticks summed over its seeds (flights for
+/// `terminated`).
+struct FlagTotals {
+  std::uint64_t motor_failure = 0, pose_stale = 0, imu_clipped = 0, pose_rejected = 0, height_invalid = 0;
+  int terminated = 0;
+};
+
+FlagTotals totals(const FaultCell& c) {
+  FlagTotals t;
   for (const auto& f : c.flights) {
-    mf += f.motor_failure_ticks;
-    ps += f.pose_stale_ticks;
-    ic += f.imu_clipped_ticks;
-    pr += f.pose_rejected_ticks;
-    hi += f.height_invalid_ticks;
-    term += f.terminated ? 1 : 0;
+    t.motor_failure += f.motor_failure_ticks;
+    t.pose_stale += f.pose_stale_ticks;
+    t.imu_clipped += f.imu_clipped_ticks;
+    t.pose_rejected += f.pose_rejected_ticks;
+    t.height_invalid += f.height_invalid_ticks;
+    t.terminated += f.terminated ? 1 : 0;
   }
+  return t;
+}
+
+/// As "motor_failure 120, pose_stale 98", or "-".
+std::string flagsText(const FaultCell& c) {
+  const FlagTotals t = totals(c);
   std::string s;
   const auto add = [&](const char* name, std::uint64_t n) {
     if (n > 0) s += fmt::format("{}{} {}", s.empty() ? "" : ", ", name, n);
   };
-  add("motor_failure", mf);
-  add("terminated", static_cast<std::uint64_t>(term));
-  add("pose_stale", ps);
-  add("imu_clipped", ic);
-  add("pose_rejected", pr);
-  add("height_invalid", hi);
+  add("motor_failure", t.motor_failure);
+  add("terminated", static_cast<std::uint64_t>(t.terminated));
+  add("pose_stale", t.pose_stale);
+  add("imu_clipped", t.imu_clipped);
+  add("pose_rejected", t.pose_rejected);
+  add("height_invalid", t.height_invalid);
   return s.empty() ? "-" : s;
 }
 
@@ -112,18 +124,11 @@ io::Json faultSuiteJson(const FaultSuiteResult& r) {
     j["survivable"] = c.survivable;
     j["degraded_cm"] = std::isfinite(c.degraded_cm) ? io::Json(c.degraded_cm) : io::Json(nullptr);
     j["non_finite_commands"] = c.non_finite_commands;
-    int terminated = 0;
-    io::Json flags = {{"motor_failure", 0}, {"pose_stale", 0}, {"imu_clipped", 0}, {"pose_rejected", 0}, {"height_invalid", 0}};
-    for (const auto& f : c.flights) {
-      terminated += f.terminated ? 1 : 0;
-      flags["motor_failure"] = flags["motor_failure"].get<std::uint64_t>() + f.motor_failure_ticks;
-      flags["pose_stale"] = flags["pose_stale"].get<std::uint64_t>() + f.pose_stale_ticks;
-      flags["imu_clipped"] = flags["imu_clipped"].get<std::uint64_t>() + f.imu_clipped_ticks;
-      flags["pose_rejected"] = flags["pose_rejected"].get<std::uint64_t>() + f.pose_rejected_ticks;
-      flags["height_invalid"] = flags["height_invalid"].get<std::uint64_t>() + f.height_invalid_ticks;
-    }
-    j["terminated"] = terminated;
-    j["flag_ticks"] = std::move(flags);
+    const FlagTotals t = totals(c);
+    j["terminated"] = t.terminated;
+    j["flag_ticks"] = {{"motor_failure", t.motor_failure}, {"pose_stale", t.pose_stale},
+                       {"imu_clipped", t.imu_clipped}, {"pose_rejected", t.pose_rejected},
+                       {"height_invalid", t.height_invalid}};
     cells.push_back(std::move(j));
   }
   doc["cells"] = std::move(cells);
