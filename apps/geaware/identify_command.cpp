@@ -36,7 +36,8 @@ struct IdentifyOptions {
   std::string out;                   ///< merged vehicle file
   std::string json;                  ///< JSON output ('-': stdout)
   std::string report;                ///< report directory
-  std::vector<std::string> columns;  ///< DEFAULT=ACTUAL renames
+  std::vector<std::string> columns;    ///< --column NAME=EXPR
+  std::vector<std::string> constants;  ///< --const NAME=VALUE
   std::string loss = "huber";
   double tilt_limit_deg = 10.0;
   int height_bands = 6;
@@ -51,11 +52,34 @@ struct IdentifyOptions {
   double mass_kg = 0.0;                 ///< vehicle mass [kg]; 0: the base vehicle's
 };
 
+/// The --column NAME=EXPR and --const NAME=VALUE definitions (io/column_expression.hpp),
+/// parsed before any log is read; a bad one is a usage error naming the option and character.
+ident::ColumnDefinitions columnDefinitions(const IdentifyOptions& opt) {
+  ident::ColumnDefinitions d;
+  try {
+    for (const auto& s : opt.columns) d.push_back(io::parseColumnDefinition(s, "--column"));
+    for (const auto& s : opt.constants) d.push_back(io::parseColumnDefinition(s, "--const", true));
+  } catch (const io::ExpressionError& e) {
+    throw UsageError(e.what());
+  }
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (d[i].name == d[j].name) throw UsageError(d[i].option + ": '" + d[i].name + "' is defined twice (also " + d[j].option + ")");
+    }
+  }
+  return d;
+}
+
 /// A flight log read from an autopilot log (ULog, DataFlash, CSV export) through a log map:
 /// the mapped channels on one time axis in ENU/FLU, a_ext computed by the paper's observer.
 ident::FlightLog readMappedFlight(const IdentifyOptions& opt, const model::VehicleParams& base,
                                   std::vector<std::string>& notes) {
-  const io::LogMap map = io::loadLogMap(opt.map);
+  io::LogMap map = io::loadLogMap(opt.map);
+  try {
+    io::applyColumnDefinitions(map, columnDefinitions(opt));
+  } catch (const io::ExpressionError& e) {
+    throw UsageError(e.what());
+  }
   std::vector<std::string> wanted = {"height", "specific_force", "attitude", "rotor_speed"};
   if (!opt.hover) wanted.emplace_back("velocity");
   io::LogReadOptions read;
@@ -67,11 +91,8 @@ ident::FlightLog readMappedFlight(const IdentifyOptions& opt, const model::Vehic
   const io::MappedFlight mapped = io::mapFlight(data, map, wanted);
   ident::MappedFlightLog flight = ident::flightLogFromMapped(mapped, base.mass_kg, base.rotor.k_T_N_per_rpm2);
   ident::FlightColumns names;
-  if (const auto it = map.channels.find("rotor_speed"); it != map.channels.end()) {
-    for (std::size_t k = 0; k < names.n.size() && k < it->second.fields.size(); ++k) {
-      const unsigned inst = k < it->second.field_instances.size() ? it->second.field_instances[k] : it->second.instance;
-      names.n[k] = it->second.topic + "[" + std::to_string(inst) + "]." + it->second.fields[k];
-    }
+  for (std::size_t k = 0; k < names.n.size() && k < mapped.rotor_fields.size(); ++k) {
+    names.n[k] = "rotor " + std::to_string(k + 1) + " (" + mapped.rotor_fields[k] + ")";
   }
   names.a_ext[2] = "a_ext z (computed)";
   notes = ident::screenFlight(flight.log, names);
@@ -83,32 +104,9 @@ ident::FlightLog readMappedFlight(const IdentifyOptions& opt, const model::Vehic
   return std::move(flight.log);
 }
 
-/// The --column renames, DEFAULT=ACTUAL, applied to every default name in `names`.
-void renameColumns(const std::vector<std::string>& specs, const std::vector<std::string*>& names) {
-  std::map<std::string, std::string> m;
-  for (const auto& s : specs) {
-    const auto eq = s.find('=');
-    if (eq == std::string::npos || eq == 0 || eq + 1 == s.size()) {
-      throw UsageError("--column '" + s + "': expected DEFAULT=ACTUAL, e.g. fz_N=Fz");
-    }
-    m[s.substr(0, eq)] = s.substr(eq + 1);
-  }
-  for (auto* n : names) {
-    if (const auto it = m.find(*n); it != m.end()) *n = it->second;
-  }
-}
-
-template <std::size_t N>
-void add(std::vector<std::string*>& names, std::array<std::string, N>& a) {
-  for (auto& s : a) names.push_back(&s);
-}
-
 ident::PlatformLog readPlatform(const IdentifyOptions& opt, std::vector<std::string>& notes) {
   ident::PlatformColumns c;
-  std::vector<std::string*> names{&c.t, &c.h, &c.tilt};
-  add(names, c.n), add(names, c.f), add(names, c.tau);
-  renameColumns(opt.columns, names);
-  ident::PlatformLog log = ident::readPlatformLog(opt.log, c);
+  ident::PlatformLog log = ident::readPlatformLog(opt.log, c, columnDefinitions(opt));
   notes = ident::screenPlatform(log, c);
   return log;
 }
@@ -136,9 +134,8 @@ ident::IdentifyResult identify(const IdentifyOptions& opt, const model::VehicleP
   if (opt.kind == "rotor") {
     ident::RotorStandColumns c;
     c.voltage = opt.voltage_column;
-    renameColumns(opt.columns, {&c.t, &c.throttle, &c.rpm, &c.thrust, &c.torque});
     io_opt.reference_voltage_V = opt.reference_voltage_V;
-    ident::RotorStandLog log = ident::readRotorStandLog(opt.log, c);
+    ident::RotorStandLog log = ident::readRotorStandLog(opt.log, c, columnDefinitions(opt));
     notes = ident::screenRotorStand(log, c);
     return withNotes(ident::identifyRotorStand(log, io_opt), notes);
   }
@@ -155,10 +152,8 @@ ident::IdentifyResult identify(const IdentifyOptions& opt, const model::VehicleP
     log = readMappedFlight(opt, base, notes);
   } else {
     ident::FlightColumns c;
-    std::vector<std::string*> names{&c.t, &c.h};
-    add(names, c.v), add(names, c.q), add(names, c.a_ext), add(names, c.n);
-    renameColumns(opt.columns, names);
-    log = opt.hover ? ident::readHoverLog(opt.log, c) : ident::readFlightLog(opt.log, c);
+    const ident::ColumnDefinitions d = columnDefinitions(opt);
+    log = opt.hover ? ident::readHoverLog(opt.log, c, d) : ident::readFlightLog(opt.log, c, d);
     notes = ident::screenFlight(log, c);
   }
   return withNotes(opt.hover ? ident::identifyHover(log, base, io_opt) : ident::identifyFlight(log, base, io_opt),
@@ -239,7 +234,7 @@ int runIdentify(const IdentifyOptions& opt) {
   files.output("--json", opt.json);
   files.directory("--report", opt.report);
   files.check();
-  if (!opt.map.empty() && !opt.columns.empty()) throw UsageError("--column: not with --map (the map names the fields)");
+  (void)columnDefinitions(opt);  // a bad --column or --const is named before the log is read
   if (!opt.map.empty() && opt.vehicle.empty() && opt.mass_kg == 0.0) {
     throw UsageError("--map: a flight fit on an autopilot log needs the vehicle's mass: --mass-kg M or --vehicle FILE "
                      "(the built-in paper quadrotor's mass is not taken for another vehicle)");
@@ -306,7 +301,13 @@ Runner addIdentifyCommand(CLI::App& app) {
                     "write every parameter, standard error and residual RMS as JSON ('-': stdout, the text "
                     "then goes to stderr)");
     sub->add_option("--report", opts->report, "write an HTML report (parameters, residuals, fit plots) to DIR");
-    sub->add_option("--column", opts->columns, "rename a column, DEFAULT=ACTUAL (e.g. fz_N=Fz); repeatable");
+    sub->add_option("--column", opts->columns,
+                    "a column from the log's fields, NAME=EXPR with units: fz_N=Fz, h_m=z[mm], "
+                    "thrust_N=Thrust[kgf], n1_rpm=rpm1*2/14 (docs/identification.md, \"Columns from expressions\"); "
+                    "repeatable");
+    sub->add_option("--const", opts->constants,
+                    "a column the log does not have, NAME=VALUE in the column's unit or with one: tilt_deg=0, "
+                    "h_m=120[mm]; repeatable");
     if (name != "correlations") {
       sub->add_flag("--accept-warnings", opts->accept_warnings,
                     "write --out even when a fitted value is outside its physical range (a negative drag band, "

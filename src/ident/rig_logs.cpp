@@ -47,8 +47,9 @@ class LogColumns {
 
   /// Reads the file (the first column is the time); `log` gets its source and first data line.
   template <typename Log>
-  void read(const std::filesystem::path& file, Log& log) {
+  void read(const std::filesystem::path& file, Log& log, const ColumnDefinitions& definitions) {
     CsvReadOptions o;
+    o.definitions = definitions;
     o.time_column = columns_.front().name;
     o.columns = std::move(columns_);
     o.min_rows = 2;
@@ -71,43 +72,47 @@ class LogColumns {
 
 }  // namespace
 
-PlatformLog readPlatformLog(const std::filesystem::path& file, const PlatformColumns& c) {
+PlatformLog readPlatformLog(const std::filesystem::path& file, const PlatformColumns& c,
+                            const ColumnDefinitions& definitions) {
   PlatformLog log;
   LogColumns k;
   k.add(time, c.t).add(height, c.h).add(tilt, c.tilt).add(speed, c.n).add(force, c.f).add(torque, c.tau);
-  k.read(file, log);
+  k.read(file, log, definitions);
   k.take(log.t_s); k.take(log.h_m); k.take(log.tilt_deg);
   k.take(log.n_rpm); k.take(log.f_N); k.take(log.tau_Nm);
   return log;
 }
 
-RotorStandLog readRotorStandLog(const std::filesystem::path& file, const RotorStandColumns& c) {
+RotorStandLog readRotorStandLog(const std::filesystem::path& file, const RotorStandColumns& c,
+                                const ColumnDefinitions& definitions) {
   RotorStandLog log;
   LogColumns k;
   k.add(time, c.t).add(unit, c.throttle).add(speed, c.rpm).add(force, c.thrust).add(torque, c.torque);
   if (!c.voltage.empty()) k.add(voltage, c.voltage);
-  k.read(file, log);
+  k.read(file, log, definitions);
   k.take(log.t_s); k.take(log.throttle); k.take(log.rpm); k.take(log.thrust_N); k.take(log.torque_Nm);
   if (!c.voltage.empty()) k.take(log.voltage_V);
   return log;
 }
 
-FlightLog readFlightLog(const std::filesystem::path& file, const FlightColumns& c) {
+FlightLog readFlightLog(const std::filesystem::path& file, const FlightColumns& c,
+                        const ColumnDefinitions& definitions) {
   FlightLog log;
   LogColumns k;
   k.add(time, c.t).add(height, c.h).add(velocity, c.v).add(quaternion, c.q);
   k.add(acceleration, c.a_ext).add(speed, c.n);
-  k.read(file, log);
+  k.read(file, log, definitions);
   k.take(log.t_s); k.take(log.h_m); k.take(log.v_W); k.take(log.q_WB); k.take(log.a_ext_W);
   k.take(log.n_rpm);
   return log;
 }
 
-FlightLog readHoverLog(const std::filesystem::path& file, const FlightColumns& c) {
+FlightLog readHoverLog(const std::filesystem::path& file, const FlightColumns& c,
+                       const ColumnDefinitions& definitions) {
   FlightLog log;
   LogColumns k;
   k.add(time, c.t).add(height, c.h).add(acceleration, c.a_ext[2]).add(speed, c.n);
-  k.read(file, log);
+  k.read(file, log, definitions);
   k.take(log.t_s); k.take(log.h_m); k.take(log.a_ext_W[2]); k.take(log.n_rpm);
   return log;
 }

@@ -15,6 +15,12 @@
 
 namespace geaware::io {
 
+namespace detail {
+// csv_columns.cpp: readCsv with column definitions.
+CsvTable readCsvDefined(const std::filesystem::path& file, const CsvReadOptions& options);
+}  // namespace detail
+
+
 namespace {
 
 std::string formatWhat(const std::string& file, std::size_t line, const std::string& column,
@@ -449,6 +455,7 @@ const std::vector<std::string>& CsvReader::units() const noexcept { return impl_
 char CsvReader::delimiter() const noexcept { return impl_->delim; }
 
 CsvTable readCsv(const std::filesystem::path& file, const CsvReadOptions& options) {
+  if (!options.definitions.empty()) return detail::readCsvDefined(file, options);
   CsvReader reader(file, options);
   CsvTable table;
   table.source = reader.source();

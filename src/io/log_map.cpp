@@ -40,6 +40,31 @@ std::string joined(const std::vector<std::string>& v) {
   return s;
 }
 
+// Motor order and pole pairs of a rotor_speed channel (io/log_map.hpp, MappedChannel).
+void readMotors(MapReader& r, MappedChannel& c) {
+  const std::size_t n = c.fields.size();
+  if (r.has("motor_of_field")) {
+    c.motor_of_field = r.texts("motor_of_field");
+    if (c.motor_of_field.size() != n) {
+      r.problem("motor_of_field", std::to_string(c.motor_of_field.size()) + " entries, expected one per field (" +
+                                      std::to_string(n) + ")");
+    }
+  }
+  if (r.has("motor_base")) c.motor_base = static_cast<double>(r.integer("motor_base", 0, 1000));
+  if (r.has("rotor_of_motor")) {
+    std::vector<bool> seen(n, false);
+    for (const double v : r.finiteNumbers("rotor_of_motor", n)) {
+      if (v < 1.0 || v > static_cast<double>(n) || std::floor(v) != v || seen[static_cast<std::size_t>(v) - 1]) {
+        r.problem("rotor_of_motor", "expected each of the rotor numbers 1 to " + std::to_string(n) + " once");
+        break;
+      }
+      seen[static_cast<std::size_t>(v) - 1] = true;
+      c.rotor_of_motor.push_back(static_cast<unsigned>(v));
+    }
+  }
+  if (r.has("pole_pairs")) c.pole_pairs = static_cast<double>(r.integer("pole_pairs", 1, 100));
+}
+
 MappedChannel readChannel(MapReader& r, const ChannelSpec& spec, const YamlContext& ctx) {
   MappedChannel c;
   c.line = ctx.lineOf(r.path());
@@ -75,18 +100,34 @@ MappedChannel readChannel(MapReader& r, const ChannelSpec& spec, const YamlConte
     r.problem("fields", std::to_string(c.fields.size()) + " fields, a " + c.frame + " attitude has " +
                             std::to_string(expected));
   }
-  if (c.frame == "euler") {
-    c.unit = r.choice("unit", {"deg", "rad"});
-    c.scale = c.unit == "deg" ? 0.017453292519943295 : 1.0;
-  }
-  if (!spec.units.empty()) {
-    std::vector<std::string> names;
-    for (const auto& [u, f] : spec.units) names.push_back(u);
-    c.unit = r.choice("unit", names);
-    for (const auto& [u, f] : spec.units) {
-      if (u == c.unit) c.scale = f;
+  // Each field is an expression (a plain name is one); one that writes units converts itself.
+  bool with_units = false, without_units = false;
+  for (std::size_t k = 0; k < c.fields.size(); ++k) {
+    try {
+      c.expressions.push_back(ColumnExpression::parse(
+          c.fields[k], std::string(spec.name) + " fields[" + std::to_string(k) + "] '" + c.fields[k] + "'"));
+      const ColumnExpression& e = c.expressions.back();
+      if (e.hasUnits()) with_units = true;
+      if (!e.hasUnits() && !e.fields().empty()) without_units = true;  // a bare number needs no unit
+    } catch (const ExpressionError& e) {
+      r.problem("fields", e.what());
+      c.expressions.emplace_back();
     }
   }
+  c.from_option.assign(c.fields.size(), false);
+  std::vector<std::pair<std::string, double>> units = spec.units;
+  if (c.frame == "euler") units = {{"deg", 0.017453292519943295}, {"rad", 1.0}};
+  if (!units.empty() && (without_units || r.has("unit"))) {
+    std::vector<std::string> names;
+    for (const auto& [u, f] : units) names.push_back(u);
+    c.unit = r.choice("unit", names);
+    for (const auto& [u, f] : units) {
+      if (u == c.unit) c.scale = f;
+    }
+    if (with_units) r.problem("unit", "a field writes its own unit: give every field its unit, or none and unit");
+  }
+  if (r.has("optional")) c.optional = r.boolean("optional");
+  if (std::string(spec.name) == "rotor_speed") readMotors(r, c);
   r.rejectUnknownKeys();
   return c;
 }

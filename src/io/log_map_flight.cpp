@@ -6,6 +6,8 @@
 #include <cmath>
 #include <map>
 #include <cstdio>
+#include <cstdlib>
+#include <optional>
 
 #include <Eigen/Geometry>
 
@@ -14,38 +16,150 @@
 namespace geaware::io {
 namespace {
 
-// One mapped channel as read: each field with the topic instance it comes from, scaled.
+// One mapped channel as read: each component's values (SI, rpm for rotor speeds) on its topic's
+// time axis, or a constant (no topic, one value).
+struct Component {
+  const Topic* topic = nullptr;
+  std::vector<double> values;
+  std::string field;  // as the map or the option wrote it
+};
 struct Series {
   std::string name;
-  std::vector<const Topic*> topics;  // per field
-  std::vector<const Channel*> fields;
+  std::vector<Component> parts;
   const MappedChannel* spec = nullptr;
 };
 
-Series find(const LogData& log, const LogMap& map, const std::string& name) {
+// The unit a channel's values are in once mapped (an expression with units is converted to it).
+const Unit* channelUnit(const std::string& name, const MappedChannel& c) {
+  if (name == "height") return findUnit("m");
+  if (name == "specific_force") return findUnit("m/s^2");
+  if (name == "gyro") return findUnit("rad/s");
+  if (name == "velocity") return findUnit("m/s");
+  if (name == "rotor_speed") return findUnit("rpm");
+  if (name == "battery_voltage") return findUnit("V");
+  if (name == "attitude" && c.frame == "euler") return findUnit("rad");
+  return nullptr;
+}
+
+// The message of a LogError without its "SOURCE: " prefix.
+std::string detailOf(const LogError& e) {
+  const std::string what = e.what();
+  return what.size() > e.file().size() + 2 ? what.substr(e.file().size() + 2) : what;
+}
+
+std::optional<Series> find(const LogData& log, const LogMap& map, const std::string& name,
+                           std::vector<std::string>& notes) {
   const auto it = map.channels.find(name);
   if (it == map.channels.end()) {
     throw LogError(log.source, "the map " + map.source + " does not say which field is '" + name +
                                    "', which this fit needs");
   }
   const MappedChannel& c = it->second;
-  Series s{name, {}, {}, &c};
-  const std::string where = " (" + name + " in " + map.source + (c.line > 0 ? ":" + std::to_string(c.line) : "") + ")";
+  Series s{name, {}, &c};
+  const std::string where =
+      "channel '" + name + "' of the map " + map.source + (c.line > 0 ? ":" + std::to_string(c.line) : "");
   for (std::size_t k = 0; k < c.fields.size(); ++k) {
     const unsigned instance = k < c.field_instances.size() ? c.field_instances[k] : c.instance;
-    const Topic* topic = log.topic(c.topic, instance);
-    if (topic == nullptr) {
-      throw LogError(log.source, "no topic '" + c.topic + "' instance " + std::to_string(instance) + where);
+    const bool option = k < c.from_option.size() && c.from_option[k];
+    const ColumnExpression& e = c.expressions.at(k);
+    const bool own_units = option || e.hasUnits();
+    EvaluatedField f;
+    try {
+      f = evaluateOnLog(e, log, c.topic, instance, channelUnit(name, c), name, own_units);
+    } catch (const MissingFieldError& error) {
+      if (c.optional && !option) {
+        notes.push_back(where + " (optional) left out: " + detailOf(error));
+        return std::nullopt;
+      }
+      throw LogError(log.source, where + (option ? "" : " (required; `optional: true` in the map lets a log lack it)") +
+                                     ": " + detailOf(error));
     }
-    if (topic->size() < 2) {
-      throw LogError(log.source, "topic '" + c.topic + "' has " + std::to_string(topic->size()) + " samples" + where);
+    if (f.topic != nullptr && f.topic->size() < 2) {
+      throw LogError(log.source, where + ": topic '" + f.topic->name + "' has " + std::to_string(f.topic->size()) +
+                                     " samples");
     }
-    const Channel* ch = topic->channel(c.fields[k]);
-    if (ch == nullptr) throw LogError(log.source, "topic '" + c.topic + "' has no field '" + c.fields[k] + "'" + where);
-    s.topics.push_back(topic);
-    s.fields.push_back(ch);
+    // The map's unit, and electrical to mechanical rpm, for the map's own fields.
+    const double scale = option ? 1.0 : (own_units ? 1.0 : c.scale) / (name == "rotor_speed" ? c.pole_pairs : 1.0);
+    if (scale != 1.0) {
+      for (auto& v : f.values) v *= scale;
+    }
+    s.parts.push_back({f.topic, std::move(f.values), c.fields[k]});
   }
   return s;
+}
+
+// The log's motor number (1-based) of each rotor_speed field: from the map's numbers, a field
+// of the log (its last value) or a logged parameter, motor_base meaning motor 1. Where the log
+// does not say (no such field or parameter, a value that is no motor, two fields on one motor)
+// the fields are taken in order, with a warning: a log from another firmware version must still
+// be read, and a hover fit uses the sum of n² only.
+std::vector<unsigned> motorNumbers(const LogData& log, const LogMap& map, const MappedChannel& c,
+                                   std::vector<std::string>& warnings) {
+  const std::size_t n = c.fields.size();
+  std::vector<unsigned> in_order(n);
+  for (std::size_t k = 0; k < n; ++k) in_order[k] = static_cast<unsigned>(k + 1);
+  if (c.motor_of_field.empty()) return in_order;
+  const auto fallback = [&](const std::string& why) {
+    warnings.push_back("rotor_speed motor_of_field of the map " + map.source + ": " + why +
+                       ": the fields are taken as motors 1 to " + std::to_string(n) + " in order");
+    return in_order;
+  };
+  std::vector<unsigned> motors(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::string& m = c.motor_of_field[k];
+    double value = 0.0;
+    if (m.rfind("param:", 0) == 0) {
+      const auto p = log.parameters.find(m.substr(6));
+      if (p == log.parameters.end()) return fallback("the log has no parameter '" + m.substr(6) + "'");
+      value = p->second;
+    } else if (!m.empty() && std::isdigit(static_cast<unsigned char>(m.front())) != 0) {
+      value = std::strtod(m.c_str(), nullptr);
+    } else {
+      const Topic* t = log.topic(c.topic, k < c.field_instances.size() ? c.field_instances[k] : c.instance);
+      const Channel* ch = t != nullptr ? t->channel(m) : nullptr;
+      if (ch == nullptr || ch->values.empty()) return fallback("the log has no field '" + m + "' in " + c.topic);
+      value = ch->values.back();
+    }
+    const double motor = value - c.motor_base + 1.0;
+    if (!(motor >= 1.0 && motor <= static_cast<double>(n)) || std::floor(motor) != motor) {
+      char text[32];
+      std::snprintf(text, sizeof text, "%g", value);
+      return fallback("'" + m + "' is " + text + ", not one of motors 1 to " + std::to_string(n));
+    }
+    motors[k] = static_cast<unsigned>(motor);
+    for (std::size_t j = 0; j < k; ++j) {
+      if (motors[j] == motors[k]) {
+        return fallback("'" + c.motor_of_field[j] + "' and '" + m + "' are both motor " + std::to_string(motors[k]));
+      }
+    }
+  }
+  return motors;
+}
+
+// Puts the rotor speeds into geaware's rotor order (model::Mixer).
+void toRotorOrder(const LogData& log, const LogMap& map, Series& s, std::vector<std::string>& notes,
+                  std::vector<std::string>& warnings) {
+  const MappedChannel& c = *s.spec;
+  if (std::find(c.from_option.begin(), c.from_option.end(), true) != c.from_option.end()) {
+    notes.push_back("rotor_speed: --column gives rotor speeds in geaware's rotor order; the map's motor order is not "
+                    "applied");
+    return;
+  }
+  const std::vector<unsigned> motors = motorNumbers(log, map, c, warnings);
+  std::vector<Component> ordered(s.parts.size());
+  for (std::size_t k = 0; k < s.parts.size(); ++k) {
+    const unsigned motor = motors[k];
+    const unsigned rotor = c.rotor_of_motor.empty() ? motor : c.rotor_of_motor[motor - 1];
+    ordered[rotor - 1] = std::move(s.parts[k]);
+  }
+  s.parts = std::move(ordered);
+  if (!c.motor_of_field.empty() || !c.rotor_of_motor.empty()) {
+    std::string text = "rotor_speed in geaware's rotor order:";
+    for (std::size_t r = 0; r < s.parts.size(); ++r) {
+      text += (r ? ", " : " ") + std::to_string(r + 1) + " = " + s.parts[r].field;
+    }
+    notes.push_back(text);
+  }
 }
 
 std::string topicName(const Topic& t) { return t.name + "[" + std::to_string(t.instance) + "]"; }
@@ -81,6 +195,26 @@ class TimeAxes {
   std::map<const Topic*, std::vector<double>> axes_;
 };
 
+const std::vector<double> kNoAxis;  // a constant's (never read)
+
+// One row of channel `name` into `out`.
+void store(const std::string& name, const std::vector<double>& r, MappedFlight& out) {
+  if (name == "height") out.h_m.push_back(r[0]);
+  if (name == "battery_voltage") out.vbat_V.push_back(r[0]);
+  for (std::size_t i = 0; i < 3 && r.size() >= 3; ++i) {
+    if (name == "specific_force") out.f_B_mps2[i].push_back(r[i]);
+    if (name == "gyro") out.gyro_B_radps[i].push_back(r[i]);
+    if (name == "velocity") out.v_W_mps[i].push_back(r[i]);
+  }
+  if (name == "attitude") {
+    for (std::size_t i = 0; i < 4; ++i) out.q_WB[i].push_back(r[i]);
+  }
+  if (name == "rotor_speed") {
+    out.n_rpm.resize(r.size());
+    for (std::size_t i = 0; i < r.size(); ++i) out.n_rpm[i].push_back(r[i]);
+  }
+}
+
 double rateOf(const std::vector<double>& t) {
   return static_cast<double>(t.size() - 1) / (t.back() - t.front());
 }
@@ -103,6 +237,9 @@ double interpolate(const std::vector<double>& t, const std::vector<double>& v, s
   const double t0 = t[k], t1 = t[k + 1];
   if (!(t1 > t0)) return v[k];
   const double a = (x - t0) / (t1 - t0);
+  // At a sample, its value only (the neighbour may be a NaN: a delta's first sample).
+  if (a == 0.0) return v[k];
+  if (a == 1.0) return v[k + 1];
   double d = v[k + 1] - v[k];
   if (period > 0.0) d -= period * std::round(d / period);
   return v[k] + a * d;
@@ -138,17 +275,23 @@ void eulerToQuaternion(std::vector<double>& x) {
 }  // namespace
 
 MappedFlight mapFlight(const LogData& log, const LogMap& map, const std::vector<std::string>& wanted) {
-  std::vector<Series> series;
-  for (const auto& name : wanted) series.push_back(find(log, map, name));
   MappedFlight out;
   out.source = log.source;
+  std::vector<Series> series;
+  for (const auto& name : wanted) {
+    if (auto s = find(log, map, name, out.notes)) series.push_back(std::move(*s));
+  }
+  for (auto& s : series) {
+    if (s.name == "rotor_speed") toRotorOrder(log, map, s, out.notes, out.warnings);
+  }
   // The time base: the slowest topic (interpolating it onto a faster one would invent data).
   TimeAxes axes(map, log.source);
-  const Topic* base = series.front().topics.front();
+  const Topic* base = nullptr;
   for (const auto& s : series) {
     std::vector<const Topic*> seen;
-    for (const Topic* t : s.topics) {
-      if (std::find(seen.begin(), seen.end(), t) != seen.end()) continue;
+    for (const auto& part : s.parts) {
+      const Topic* t = part.topic;
+      if (t == nullptr || std::find(seen.begin(), seen.end(), t) != seen.end()) continue;
       seen.push_back(t);
       const double rate = rateOf(axes.of(*t));
       char text[64];
@@ -159,14 +302,15 @@ MappedFlight mapFlight(const LogData& log, const LogMap& map, const std::vector<
                                std::to_string(static_cast<int>(kMinFitRateHz)) +
                                " Hz a fit of the vehicle's motion needs: the fit runs on its samples only");
       }
-      if (rate < rateOf(axes.of(*base))) base = t;
+      if (base == nullptr || rate < rateOf(axes.of(*base))) base = t;
     }
   }
+  if (base == nullptr) throw LogError(log.source, "every mapped channel is a constant: no time axis from the log");
   out.time_base = topicName(*base);
   out.notes.push_back("time base: " + out.time_base + " (the slowest channel; the others are interpolated linearly)");
   std::vector<std::vector<Cursor>> cursors(series.size());
   for (std::size_t k = 0; k < series.size(); ++k) {
-    for (const Topic* t : series[k].topics) cursors[k].push_back({axes.of(*t)});
+    for (const auto& part : series[k].parts) cursors[k].push_back({part.topic ? axes.of(*part.topic) : kNoAxis});
   }
   const bool convert = map.frames == "ned_frd";
   std::size_t outside = 0, with_nan = 0;
@@ -176,15 +320,19 @@ MappedFlight mapFlight(const LogData& log, const LogMap& map, const std::vector<
     bool ok = true, finite = true;
     for (std::size_t k = 0; k < series.size() && ok; ++k) {
       const Series& s = series[k];
-      const double period = s.spec->frame == "euler" ? 2.0 * M_PI / s.spec->scale : 0.0;
-      row[k].resize(s.fields.size());
-      for (std::size_t f = 0; f < s.fields.size() && ok; ++f) {
+      row[k].resize(s.parts.size());
+      for (std::size_t f = 0; f < s.parts.size() && ok; ++f) {
+        const Component& part = s.parts[f];
+        if (part.topic == nullptr) {
+          row[k][f] = part.values.front();
+          continue;
+        }
         const std::size_t at = cursors[k][f].locate(t);
         if (at == SIZE_MAX) {
           ok = false;
           break;
         }
-        row[k][f] = interpolate(cursors[k][f].t, s.fields[f]->values, at, t, period) * s.spec->scale;
+        row[k][f] = interpolate(cursors[k][f].t, part.values, at, t, s.spec->frame == "euler" ? 2.0 * M_PI : 0.0);
         finite = finite && std::isfinite(row[k][f]);
       }
       if (!ok) break;
@@ -208,24 +356,12 @@ MappedFlight mapFlight(const LogData& log, const LogMap& map, const std::vector<
       continue;
     }
     out.t_s.push_back(t);
-    for (std::size_t k = 0; k < series.size(); ++k) {
-      const std::string& name = series[k].name;
-      const auto& r = row[k];
-      if (name == "height") out.h_m.push_back(r[0]);
-      if (name == "battery_voltage") out.vbat_V.push_back(r[0]);
-      for (std::size_t i = 0; i < 3 && r.size() >= 3; ++i) {
-        if (name == "specific_force") out.f_B_mps2[i].push_back(r[i]);
-        if (name == "gyro") out.gyro_B_radps[i].push_back(r[i]);
-        if (name == "velocity") out.v_W_mps[i].push_back(r[i]);
-      }
-      if (name == "attitude") {
-        for (std::size_t i = 0; i < 4; ++i) out.q_WB[i].push_back(r[i]);
-      }
-      if (name == "rotor_speed") {
-        out.n_rpm.resize(r.size());
-        for (std::size_t i = 0; i < r.size(); ++i) out.n_rpm[i].push_back(r[i]);
-      }
-    }
+    for (std::size_t k = 0; k < series.size(); ++k) store(series[k].name, row[k], out);
+  }
+  for (const auto& s : series) {
+    if (s.name != "rotor_speed") continue;
+    out.n_rpm.resize(s.parts.size());
+    for (const auto& p : s.parts) out.rotor_fields.push_back(p.field);
   }
   if (outside > 0) out.notes.push_back(std::to_string(outside) + " samples of the time base outside another channel's time span: dropped");
   if (with_nan > 0) out.notes.push_back(std::to_string(with_nan) + " samples with a NaN in a mapped field: dropped");

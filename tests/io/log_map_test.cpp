@@ -190,7 +190,12 @@ TEST(LogMap, CrazyflieCsvExportInMillisecondsAndG) {
   EXPECT_DOUBLE_EQ(f.h_m[2], 0.052);                 // up, not negated
   EXPECT_DOUBLE_EQ(f.f_B_mps2[2][0], 9.80665);       // g → m/s²
   EXPECT_DOUBLE_EQ(f.f_B_mps2[1][0], -0.02 * 9.80665);  // FLU kept
-  EXPECT_DOUBLE_EQ(f.n_rpm[3][0], 15300.0);
+  // Crazyflie m1-m4 are front-right, rear-right, rear-left, front-left: geaware's rotor 4
+  // (rear-right) is m2, rotor 2 (rear-left) m3, rotor 3 (front-left) m4.
+  EXPECT_DOUBLE_EQ(f.n_rpm[0][0], 15000.0);
+  EXPECT_DOUBLE_EQ(f.n_rpm[1][0], 15200.0);
+  EXPECT_DOUBLE_EQ(f.n_rpm[2][0], 15300.0);
+  EXPECT_DOUBLE_EQ(f.n_rpm[3][0], 15100.0);
   EXPECT_DOUBLE_EQ(f.vbat_V[0], 3.9);
   EXPECT_DOUBLE_EQ(f.q_WB[0][0], 1.0);
 }

@@ -12,7 +12,13 @@
 #include <string>
 #include <vector>
 
+#include "geaware/io/column_expression.hpp"
+
 namespace geaware::ident {
+
+/// Columns computed from the log's fields (`--column NAME=EXPR`, `--const NAME=VALUE`; each
+/// NAME one of the reader's column names, io/column_expression.hpp).
+using ColumnDefinitions = std::vector<io::ColumnDefinition>;
 
 // ------------------------------------------------------------------------ quadrotor platform
 
@@ -43,7 +49,8 @@ struct PlatformLog {
 };
 
 [[nodiscard]] PlatformLog readPlatformLog(const std::filesystem::path& file,
-                                          const PlatformColumns& columns = {});
+                                          const PlatformColumns& columns = {},
+                                          const ColumnDefinitions& definitions = {});
 
 // ------------------------------------------------------------------------ single-rotor stand
 
@@ -72,7 +79,8 @@ struct RotorStandLog {
 };
 
 [[nodiscard]] RotorStandLog readRotorStandLog(const std::filesystem::path& file,
-                                              const RotorStandColumns& columns = {});
+                                              const RotorStandColumns& columns = {},
+                                              const ColumnDefinitions& definitions = {});
 
 // ----------------------------------------------------------------------------- flight logs
 
@@ -104,12 +112,14 @@ struct FlightLog {
 
 /// A full flight log (for the drag table): every column of FlightColumns.
 [[nodiscard]] FlightLog readFlightLog(const std::filesystem::path& file,
-                                      const FlightColumns& columns = {});
+                                      const FlightColumns& columns = {},
+                                      const ColumnDefinitions& definitions = {});
 
 /// A hover-descent log (for F_G in flight, paper eq. 10): only t, h, the world-z external
 /// acceleration and the rotor speeds are read.
 [[nodiscard]] FlightLog readHoverLog(const std::filesystem::path& file,
-                                     const FlightColumns& columns = {});
+                                     const FlightColumns& columns = {},
+                                     const ColumnDefinitions& definitions = {});
 
 }  // namespace geaware::ident
 

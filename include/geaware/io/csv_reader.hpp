@@ -23,6 +23,8 @@
 #include <string_view>
 #include <vector>
 
+#include "geaware/io/column_expression.hpp"
+
 namespace geaware::io {
 
 /// A problem in a log file. what() is "FILE:LINE: column 'NAME': MESSAGE" (the line and the
@@ -57,6 +59,11 @@ struct CsvReadOptions {
   /// none of them: runs of spaces); ' ': runs of spaces and tabs.
   char delimiter = 0;
   std::size_t buffer_bytes = 1u << 22;     ///< read buffer [bytes]; grows for longer lines
+  /// Requested columns computed from others (`--column h_m=z[mm]`, `--const tilt_deg=0`;
+  /// io/column_expression.hpp): each must name a requested column. Only readCsv uses them; a
+  /// defined column's range is checked on its computed values (in the column's unit), and rows
+  /// that delta() leaves without a value (the first) are dropped.
+  std::vector<ColumnDefinition> definitions;
 };
 
 /// Reads one CSV file row by row. The header is the first line that is neither empty nor a

@@ -13,14 +13,17 @@
 #include <string>
 #include <vector>
 
+#include "geaware/io/column_expression.hpp"
 #include "geaware/io/log_channels.hpp"
 
 namespace geaware::io {
 
-/// One mapped quantity: `fields` of one topic, scaled by `scale` into SI (rpm for rotor speeds,
-/// rad for Euler angles) from `unit`, in `frame` ("scalar", "world", "body", "quaternion" w x y z
-/// world from body, "euler": roll, pitch, yaw of the body in the world (z-y-x), "world_z": a
-/// world z coordinate, read as a height).
+/// One mapped quantity: `fields` of one topic (each an expression, io/column_expression.hpp:
+/// `esc[2].esc_rpm`, `z[mm]`, `delta(vz[m/s]) / delta(t[s])`), scaled by `scale` into SI (rpm
+/// for rotor speeds, rad for Euler angles) from `unit` — a field that writes its own units is
+/// converted by them instead — in `frame` ("scalar", "world", "body", "quaternion" w x y z world
+/// from body, "euler": roll, pitch, yaw of the body in the world (z-y-x), "world_z": a world z
+/// coordinate, read as a height).
 struct MappedChannel {
   std::string topic;
   unsigned instance = 0;
@@ -28,9 +31,29 @@ struct MappedChannel {
   /// The topic instance of each field (same length as fields): `instance` for all, or, with
   /// `instances: [0, 1, 2, 3]` and one field, that field of each instance (ArduPilot's ESC).
   std::vector<unsigned> field_instances;
+  std::vector<ColumnExpression> expressions;  ///< fields, parsed
+  /// Per field: whether it comes from --column/--const (then in the column's unit, the log's
+  /// units used) rather than from the map file.
+  std::vector<bool> from_option;
   std::string unit;
   double scale = 1.0;
   std::string frame = "scalar";
+  /// A log without this channel is read without it (a note says so); a required channel
+  /// missing is an error naming the map, the channel and the fields the log has.
+  bool optional = false;
+  // Rotor speeds only (docs/identification.md, "Motor order and pole pairs"):
+  /// The log's motor number of each field (1-based), as numbers, or read from the log: a field
+  /// of the topic or `param:NAME` (a logged parameter) holding motor_base for motor 1 (PX4's
+  /// esc[i].actuator_function, 101 = Motor1; ArduPilot's SERVOn_FUNCTION, 33 = Motor1). Empty:
+  /// field k is motor k + 1.
+  std::vector<std::string> motor_of_field;
+  double motor_base = 1.0;
+  /// geaware's rotor number (model::Mixer: 1 front-right, 2 rear-left, 3 front-left, 4
+  /// rear-right) of each of the log's motors 1…N. Empty: the same numbers.
+  std::vector<unsigned> rotor_of_motor;
+  /// Magnet pole pairs of the motors: a logged electrical speed divided by it is the rotor's
+  /// (1: the log gives mechanical rpm).
+  double pole_pairs = 1.0;
   int line = 0;  ///< line in the map file
 };
 
@@ -55,6 +78,33 @@ struct LogMap {
 [[nodiscard]] LogMap loadLogMap(const std::string& name_or_file);
 [[nodiscard]] LogMap parseLogMap(const std::string& text, const std::string& source, const std::string& name);
 
+/// The flight columns `--column` and `--const` may define with a map, each with its channel and
+/// component: h_m (height), a_x_mps2 … (specific_force), gyro_x_radps …, qw … qz (attitude as a
+/// quaternion), vx_mps … (velocity), n1_rpm … n8_rpm (rotor_speed, geaware's rotor order applies
+/// to the map's fields, not to these), vbat_V (battery_voltage).
+[[nodiscard]] std::vector<std::string> mappedColumnNames();
+/// Puts each definition into `map` in place of the map's field (the channel is created when the
+/// map has none: then every component of it must be defined). Values of a definition are in
+/// the map's frames. Throws ExpressionError naming the option.
+void applyColumnDefinitions(LogMap& map, const std::vector<ColumnDefinition>& definitions);
+
+/// The values of `e` on `log`: its fields resolved in `topic`/`instance` (a field may name its
+/// own: `sensor_combined.gyro_rad[0]`, `IMU[1].GyrX`; with no topic, the one topic that has
+/// it), on that topic's time axis; a constant has no topic and one value. `target` is the unit
+/// of the result (io/column_expression.hpp). Throws MissingFieldError (a field or topic the log
+/// lacks, naming the fields it has) or LogError.
+struct EvaluatedField {
+  const Topic* topic = nullptr;
+  std::vector<double> values;
+};
+class MissingFieldError : public LogError {
+ public:
+  using LogError::LogError;
+};
+[[nodiscard]] EvaluatedField evaluateOnLog(const ColumnExpression& e, const LogData& log, const std::string& topic,
+                                           unsigned instance, const Unit* target, const std::string& target_name,
+                                           bool log_units);
+
 /// The mapped channels of one log on one time axis, in SI units and geaware's frames.
 struct MappedFlight {
   std::string source;
@@ -65,7 +115,8 @@ struct MappedFlight {
   std::array<std::vector<double>, 3> gyro_B_radps;  ///< FLU body
   std::array<std::vector<double>, 4> q_WB;          ///< w, x, y, z: ENU world from FLU body
   std::array<std::vector<double>, 3> v_W_mps;       ///< ENU
-  std::vector<std::vector<double>> n_rpm;           ///< one vector per rotor
+  std::vector<std::vector<double>> n_rpm;           ///< one vector per rotor, geaware's order
+  std::vector<std::string> rotor_fields;            ///< the log field of each rotor (n_rpm's order)
   std::vector<double> vbat_V;
   std::vector<std::string> notes;        ///< rates, time base, rows dropped
   /// Channels logged slower than kMinFitRateHz (each named with its rate).
@@ -79,8 +130,10 @@ inline constexpr double kMinFitRateHz = 20.0;
 
 /// The channels `wanted` (names of LogMap::channels) of `log`: every one sampled at the times of
 /// the slowest of them (linear interpolation, the quaternion normalised; rows outside any
-/// channel's time span or with a NaN are dropped and counted in the notes). Throws LogError
-/// naming the log, the map and the missing channel, topic or field.
+/// channel's time span or with a NaN are dropped and counted in the notes); rotor speeds in
+/// geaware's rotor order, mechanical. An optional channel the log lacks is left out (a note).
+/// Throws LogError naming the log, the map and the missing channel, topic or field (with the
+/// fields the log has).
 [[nodiscard]] MappedFlight mapFlight(const LogData& log, const LogMap& map, const std::vector<std::string>& wanted);
 
 }  // namespace geaware::io
