@@ -199,6 +199,20 @@ void imuMocapKeys(std::vector<K>& t) {
   t.push_back(number("sensors.imu.vibration_accel_std_m_per_s2", "m/s²", 0.0, 100.0, kClosed,
                      GW_NUMBER(w.sensors.imu.vibration_accel_std_m_per_s2),
                      "vibration noise left in the accelerometer output, 1σ per axis"));
+  t.push_back(number("sensors.imu.rotor_vibration_accel_std_m_per_s2", "m/s²", 0.0, 1e3, kClosed,
+                     GW_NUMBER(w.sensors.imu.rotor_vibration.accel_std_m_per_s2),
+                     "raw accelerometer vibration at the rotor harmonics (before any filter) at the reference speed, 1σ per axis (0: off)"));
+  t.push_back(number("sensors.imu.rotor_vibration_gyro_std_rad_per_s", "rad/s", 0.0, 100.0, kClosed,
+                     GW_NUMBER(w.sensors.imu.rotor_vibration.gyro_std_rad_per_s),
+                     "raw gyro vibration at the rotor harmonics (before any filter) at the reference speed, 1σ per axis (0: off)"));
+  t.push_back(number("sensors.imu.rotor_vibration_reference_rpm", "rpm", 0.0, 1e6, kOpen,
+                     GW_NUMBER(w.sensors.imu.rotor_vibration.reference_rpm),
+                     "rotor speed at which the rotor-harmonic σ hold (they scale with speed²)"));
+  t.push_back(integer(
+      "sensors.imu.rotor_vibration_blade_count", "", 1, 12,
+      [](const W& w) -> long { return w.sensors.imu.rotor_vibration.blade_count; },
+      [](W& w, long v) { w.sensors.imu.rotor_vibration.blade_count = static_cast<int>(v); },
+      "blades per propeller (the blade-passage harmonic)"));
   t.push_back(number("sensors.imu.lowpass_cutoff_Hz", "Hz", 0.0, 1e4, kClosed,
                      GW_NUMBER(w.sensors.imu.lowpass_cutoff_Hz),
                      "the flight controller's second-order low-pass (0: off)"));

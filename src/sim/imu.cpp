@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
+#include <string>
 #include <numbers>
 #include <utility>
 
@@ -36,10 +38,17 @@ std::vector<model::FieldError> ImuParams::validate() const {
              "at least rate_Hz = " + model::formatValue(rate_Hz));
     }
   }
+  const RotorVibrationParams& rv = rotor_vibration;
+  c.range("rotor_vibration_accel_std_m_per_s2", rv.accel_std_m_per_s2, 0.0, 1e3, kInclusive, "m/s²");
+  c.range("rotor_vibration_gyro_std_rad_per_s", rv.gyro_std_rad_per_s, 0.0, 100.0, kInclusive, "rad/s");
+  c.range("rotor_vibration_reference_rpm", rv.reference_rpm, 0.0, 1e6, kExclusive, "rpm");
+  if (rv.blade_count < 1 || rv.blade_count > 12) {
+    c.fail("rotor_vibration_blade_count", std::to_string(rv.blade_count), "an integer in [1, 12]");
+  }
   return out;
 }
 
-LowPass2::LowPass2(double sample_rate_Hz, double cutoff_Hz) noexcept {
+LowPass2::LowPass2(double sample_rate_Hz, double cutoff_Hz) noexcept : sample_rate_Hz_(sample_rate_Hz) {
   const double ohm = std::tan(std::numbers::pi * cutoff_Hz / sample_rate_Hz);
   const double k = 2.0 * std::cos(std::numbers::pi / 4.0) * ohm;  // √2·Ω
   const double c = 1.0 + k + ohm * ohm;
@@ -62,6 +71,13 @@ LowPass2::LowPass2(double sample_rate_Hz, double cutoff_Hz) noexcept {
     if (k_s > 8 && h * h < 1e-20 * sum && w1 * w1 + w2 * w2 < 1e-20) break;
   }
   noise_gain_ = sum;
+}
+
+double LowPass2::gainAt(double frequency_Hz) const noexcept {
+  // H(z) = (b0 + b1 z⁻¹ + b2 z⁻²)/(1 + a1 z⁻¹ + a2 z⁻²) on the unit circle.
+  const std::complex<double> z1 = std::polar(1.0, -2.0 * std::numbers::pi * frequency_Hz / sample_rate_Hz_);
+  const std::complex<double> z2 = z1 * z1;
+  return std::abs((b0_ + b1_ * z1 + b2_ * z2) / (1.0 + a1_ * z1 + a2_ * z2));
 }
 
 void LowPass2::reset(const Eigen::Vector3d& x) noexcept {
@@ -90,6 +106,7 @@ Imu::Imu(const ImuParams& params, std::uint64_t scenario_seed)
   accel_bias_B_ = params_.accel_initial_bias_std_m_per_s2 * noise_.normal3();
   gyro_vibration_std_ = params_.vibration_gyro_std_rad_per_s;
   accel_vibration_std_ = params_.vibration_accel_std_m_per_s2;
+  if (params_.rotor_vibration.enabled()) rotor_vibration_.emplace(params_.rotor_vibration, scenario_seed);
   if (params_.lowpass_cutoff_Hz > 0.0) {
     gyro_lp_.emplace(params_.filter_rate_Hz, params_.lowpass_cutoff_Hz);
     accel_lp_.emplace(params_.filter_rate_Hz, params_.lowpass_cutoff_Hz);
@@ -111,16 +128,23 @@ Eigen::Vector3d Imu::specificForce(const PlantState& s) const noexcept {
 void Imu::filterRaw(const PlantState& s) noexcept {
   Eigen::Vector3d w = s.w_B;
   Eigen::Vector3d a = specificForce(s);
-  if (gyro_vibration_std_ > 0.0) w += gyro_vibration_std_ * vibration_noise_.normal3();
-  if (accel_vibration_std_ > 0.0) a += accel_vibration_std_ * vibration_noise_.normal3();
   if (!filter_started_) {
+    // Start in the steady state of the vibration-free signal (the vibration's mean is 0); a
+    // start on a vibrated sample would hold its offset (tens of m/s² at the rotor harmonics)
+    // through the filter's first time constants.
     gyro_lp_->reset(w);
     accel_lp_->reset(a);
     filter_started_ = true;
-  } else {
-    (void)gyro_lp_->apply(w);
-    (void)accel_lp_->apply(a);
   }
+  if (gyro_vibration_std_ > 0.0) w += gyro_vibration_std_ * vibration_noise_.normal3();
+  if (accel_vibration_std_ > 0.0) a += accel_vibration_std_ * vibration_noise_.normal3();
+  if (rotor_vibration_) {
+    rotor_vibration_->advance(s);
+    w += rotor_vibration_->gyro_B();
+    a += rotor_vibration_->accel_B();
+  }
+  (void)gyro_lp_->apply(w);
+  (void)accel_lp_->apply(a);
 }
 
 std::optional<model::ImuSample> Imu::sample(const PlantState& s) noexcept {
@@ -149,6 +173,11 @@ std::optional<model::ImuSample> Imu::sample(const PlantState& s) noexcept {
     a_B = specificForce(s);
     if (gyro_vibration_std_ > 0.0) w_B += gyro_vibration_std_ * vibration_noise_.normal3();
     if (accel_vibration_std_ > 0.0) a_B += accel_vibration_std_ * vibration_noise_.normal3();
+    if (rotor_vibration_) {
+      rotor_vibration_->advance(s);
+      w_B += rotor_vibration_->gyro_B();
+      a_B += rotor_vibration_->accel_B();
+    }
   }
 
   // 3. Bias, white noise and saturation.

@@ -24,6 +24,12 @@
 // derived from the filter's white-noise gain (σ_raw = σ/√Σh_k²). Without the filter they are
 // added per output sample.
 //
+// Rotor-harmonic vibration (sim/rotor_vibration.hpp; off by default): the raw vibration at the
+// rotors' rotation and blade-passage frequencies, added to the raw samples before the filter
+// (or per output sample without it). Unlike the broadband vibration above, its parameters are
+// the RAW standard deviation at a reference rotor speed; what the filter leaves of it depends
+// on the rotor speed (LowPass2::gainAt).
+//
 // Defaults: an ADIS16448-class MEMS IMU with densities inflated for the vibration of a
 // 7-inch quadrotor (rotors_simulator uses the same order of magnitude): 0.24 °/s and
 // 0.057 m/s² white noise per sample at 200 Hz.
@@ -38,6 +44,7 @@
 #include "geaware/model/units.hpp"
 #include "geaware/model/field_error.hpp"
 #include "geaware/sim/plant_state.hpp"
+#include "geaware/sim/rotor_vibration.hpp"
 #include "geaware/sim/sampling.hpp"
 
 namespace geaware::sim {
@@ -58,6 +65,7 @@ struct ImuParams {
   double vibration_accel_std_m_per_s2 = 0.0;    ///< vibration noise left in the output, 1σ per axis [m/s²]
   double lowpass_cutoff_Hz = 0.0;               ///< flight controller's 2nd-order low-pass cutoff; 0: off [Hz]
   double filter_rate_Hz = 1000.0;               ///< raw sample rate the filter runs at (call sample() at least this often) [Hz]
+  RotorVibrationParams rotor_vibration;         ///< rotor-harmonic vibration (raw σ at a reference speed)
 
   /// Every offending field (key names as above); empty when usable.
   [[nodiscard]] std::vector<model::FieldError> validate() const;
@@ -79,8 +87,11 @@ class LowPass2 {
   [[nodiscard]] double noiseGain() const noexcept { return noise_gain_; }
   /// Group delay at DC (a ramp's lag), 1 − (a1 + 2·a2)/(1 + a1 + a2) samples [s].
   [[nodiscard]] double groupDelay_s() const noexcept { return group_delay_s_; }
+  /// Amplitude response |H(e^{jω})| at frequency_Hz (ω = 2π·f/f_s), for 0 ≤ f < f_s/2 [-].
+  [[nodiscard]] double gainAt(double frequency_Hz) const noexcept;
 
  private:
+  double sample_rate_Hz_ = 1.0;
   double b0_ = 1.0, b1_ = 0.0, b2_ = 0.0, a1_ = 0.0, a2_ = 0.0;
   Eigen::Vector3d d1_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d d2_ = Eigen::Vector3d::Zero();
@@ -126,6 +137,7 @@ class Imu {
   NoiseSource vibration_noise_;  // (scenario_seed, salt::kImuVibration)
   double gyro_vibration_std_ = 0.0;   // per raw (filtered) or output (unfiltered) sample [rad/s]
   double accel_vibration_std_ = 0.0;  // [m/s²]
+  std::optional<RotorVibration> rotor_vibration_;  // null when off
   std::optional<LowPass2> gyro_lp_;
   std::optional<LowPass2> accel_lp_;
   SampleClock raw_clock_;
