@@ -5,7 +5,11 @@
 //                     2 uint32 + 2 uint8), written as PX4's logger writes them (format, subscription,
 //                     data messages);
 //   BM_ReadDataFlash  10⁶ IMU-like messages (QBffffff + FMT/FMTU/UNIT/MULT);
-//   BM_ReadCsv        10⁶ rows × 8 columns of a CSV log, every column parsed.
+//   BM_ReadCsv        10⁶ rows × 8 columns of a CSV log, every column parsed;
+//   BM_ReadCrazyflieUsd       10⁶ events of a uSD event log (version 2: uint16 id, uint64 µs,
+//                             12 floats and 5 uint16, as the deck's fixedFrequency event), CRC-32;
+//   BM_ReadCrazyflieUsdFixed  10⁶ records of the older fixed-frequency format (tick + 12 floats
+//                             + 5 uint16), in blocks of 100 records with their CRCs.
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -118,6 +122,75 @@ const std::filesystem::path& csvFile() {
   return path;
 }
 
+// A CRC-32 (zlib's) for the uSD files.
+std::uint32_t crc32(const std::string& bytes, std::size_t from = 0) {
+  static const auto table = [] {
+    std::vector<std::uint32_t> t(256);
+    for (std::uint32_t i = 0; i < 256; ++i) {
+      std::uint32_t c = i;
+      for (int k = 0; k < 8; ++k) c = (c & 1U) != 0 ? 0xEDB88320U ^ (c >> 1) : c >> 1;
+      t[i] = c;
+    }
+    return t;
+  }();
+  std::uint32_t c = 0xFFFFFFFFU;
+  for (std::size_t i = from; i < bytes.size(); ++i) {
+    c = table[(c ^ static_cast<unsigned char>(bytes[i])) & 0xffU] ^ (c >> 8);
+  }
+  return c ^ 0xFFFFFFFFU;
+}
+
+constexpr const char* kUsdVariables[] = {"stateEstimate.x(f)", "stateEstimate.y(f)", "stateEstimate.z(f)",
+                                         "acc.x(f)", "acc.y(f)", "acc.z(f)", "gyro.x(f)", "gyro.y(f)", "gyro.z(f)",
+                                         "stateEstimate.qw(f)", "stateEstimate.qx(f)", "stateEstimate.qy(f)",
+                                         "rpm.m1(H)", "rpm.m2(H)", "rpm.m3(H)", "rpm.m4(H)", "pm.vbatMV(H)"};
+
+void usdRecord(Bytes& b, std::size_t i) {
+  const auto x = static_cast<float>(i % 1000);
+  for (int k = 0; k < 12; ++k) b.put(0.001f * x + static_cast<float>(k));
+  for (int k = 0; k < 4; ++k) b.put(static_cast<std::uint16_t>(15000 + i % 100 + static_cast<std::size_t>(k)));
+  b.put(static_cast<std::uint16_t>(3900 - i % 10));
+}
+
+const std::filesystem::path& usdFile() {
+  static const std::filesystem::path path = [] {
+    Bytes b;
+    b.put(std::uint8_t{0xBC}).put(std::uint16_t{2}).put(std::uint16_t{1});
+    b.put(std::uint16_t{0});
+    b.data += std::string("fixedFrequency") + '\0';
+    b.put(static_cast<std::uint16_t>(std::size(kUsdVariables)));
+    for (const char* v : kUsdVariables) b.data += std::string(v) + '\0';
+    for (std::size_t i = 0; i < kRows; ++i) {
+      b.put(std::uint16_t{0}).put(static_cast<std::uint64_t>(1000 * i));
+      usdRecord(b, i);
+    }
+    b.put(crc32(b.data));
+    return writeOnce("geaware_bench_read_usd.bin", b.data);
+  }();
+  return path;
+}
+
+const std::filesystem::path& usdFixedFile() {
+  static const std::filesystem::path path = [] {
+    Bytes b;
+    b.put(static_cast<std::uint8_t>(1 + std::size(kUsdVariables)));
+    b.data += "tick(I),";
+    for (const char* v : kUsdVariables) b.data += std::string(v) + ',';
+    b.put(crc32(b.data) ^ 0xFFFFFFFFU);
+    for (std::size_t i = 0; i < kRows; i += 100) {
+      const std::size_t start = b.data.size();
+      b.put(std::uint8_t{100});
+      for (std::size_t k = i; k < i + 100; ++k) {
+        b.put(static_cast<std::uint32_t>(k));
+        usdRecord(b, k);
+      }
+      b.put(crc32(b.data, start) ^ 0xFFFFFFFFU);
+    }
+    return writeOnce("geaware_bench_read_usd_fixed.bin", b.data);
+  }();
+  return path;
+}
+
 void BM_ReadULog(benchmark::State& state) {
   const auto& file = ulogFile();
   for (auto _ : state) {
@@ -154,5 +227,20 @@ void BM_ReadCsv(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kRows));
 }
 BENCHMARK(BM_ReadCsv)->Unit(benchmark::kMillisecond);
+
+void readUsd(benchmark::State& state, const std::filesystem::path& file) {
+  for (auto _ : state) {
+    const auto log = geaware::io::readCrazyflieUsd(file);
+    if (log.topics.size() != 1 || log.topics[0].size() != kRows || !log.warnings.empty()) {
+      state.SkipWithError("wrong row count or a warning");
+    }
+    benchmark::DoNotOptimize(log.topics.data());
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kRows));
+}
+void BM_ReadCrazyflieUsd(benchmark::State& state) { readUsd(state, usdFile()); }
+BENCHMARK(BM_ReadCrazyflieUsd)->Unit(benchmark::kMillisecond);
+void BM_ReadCrazyflieUsdFixed(benchmark::State& state) { readUsd(state, usdFixedFile()); }
+BENCHMARK(BM_ReadCrazyflieUsdFixed)->Unit(benchmark::kMillisecond);
 
 }  // namespace

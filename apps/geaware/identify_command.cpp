@@ -82,10 +82,17 @@ ident::FlightLog readMappedFlight(const IdentifyOptions& opt, const model::Vehic
   }
   std::vector<std::string> wanted = {"height", "specific_force", "attitude", "rotor_speed"};
   if (!opt.hover) wanted.emplace_back("velocity");
+  // Only the mapped topics are decoded, unless a channel names none (its fields are looked up
+  // in every topic) or --column/--const may name any.
   io::LogReadOptions read;
+  bool every_topic = !opt.columns.empty() || !opt.constants.empty();
   for (const auto& w : wanted) {
-    if (const auto it = map.channels.find(w); it != map.channels.end()) read.topics.push_back(it->second.topic);
+    if (const auto it = map.channels.find(w); it != map.channels.end()) {
+      read.topics.push_back(it->second.topic);
+      every_topic = every_topic || it->second.topic.empty();
+    }
   }
+  if (every_topic) read.topics.clear();
   const io::LogData data = io::readLog(opt.log, read);
   for (const auto& w : data.warnings) std::cerr << "geaware: warning: " << opt.log << ": " << w << "\n";
   const io::MappedFlight mapped = io::mapFlight(data, map, wanted);
@@ -347,7 +354,7 @@ Runner addIdentifyCommand(CLI::App& app) {
     if (name == "flight") {
       sub->add_flag("--hover", opts->hover, "the log is a hover descent: fit F_G (eq. 10)");
       sub->add_option("--map", opts->map,
-                      "read an autopilot log (PX4 .ulg, ArduPilot .bin, CSV export) through a log map: a built-in "
+                      "read an autopilot log (PX4 .ulg, ArduPilot .bin, Crazyflie uSD, CSV export) through a log map: a built-in "
                       "name (px4, ardupilot, crazyflie) or a map file (docs/identification.md, \"Mapping a log\")");
       sub->add_option("--mass-kg", opts->mass_kg, "the vehicle's mass [kg] (instead of the base vehicle's)")
           ->check(finiteIn(0.0, 1000.0, true));

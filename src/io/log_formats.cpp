@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <span>
 
 #include "geaware/io/csv_reader.hpp"
 #include "geaware/io/log_channels.hpp"
@@ -92,11 +93,12 @@ LogData readCsvLog(const std::filesystem::path& file) {
 LogFormat detectLogFormat(const std::filesystem::path& file) {
   const std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(file.c_str(), "rb"), &std::fclose);
   if (f == nullptr) throw LogError(file.string(), std::string("cannot open: ") + std::strerror(errno));
-  std::array<unsigned char, 8> head{};
+  std::array<unsigned char, 256> head{};
   const std::size_t n = std::fread(head.data(), 1, head.size(), f.get());
   constexpr std::array<unsigned char, 7> kULog = {0x55, 0x4c, 0x6f, 0x67, 0x01, 0x12, 0x35};
   if (n >= kULog.size() && std::equal(kULog.begin(), kULog.end(), head.begin())) return LogFormat::kULog;
   if (n >= 3 && head[0] == 0xa3 && head[1] == 0x95 && head[2] == 0x80) return LogFormat::kDataFlash;
+  if (looksLikeCrazyflieUsd(std::as_bytes(std::span(head.data(), n)))) return LogFormat::kCrazyflieUsd;
   return LogFormat::kCsv;
 }
 
@@ -109,6 +111,7 @@ LogData readLog(const std::filesystem::path& file, const LogReadOptions& options
   switch (detectLogFormat(file)) {
     case LogFormat::kULog: return readULog(file, options);
     case LogFormat::kDataFlash: return readDataFlash(file, options);
+    case LogFormat::kCrazyflieUsd: return readCrazyflieUsd(file, options);
     case LogFormat::kCsv: break;
   }
   return readCsvLog(file);

@@ -68,7 +68,9 @@ void readMotors(MapReader& r, MappedChannel& c) {
 MappedChannel readChannel(MapReader& r, const ChannelSpec& spec, const YamlContext& ctx) {
   MappedChannel c;
   c.line = ctx.lineOf(r.path());
-  c.topic = r.text("topic");
+  // No topic: each field is looked up in the one topic that has it (a Crazyflie log's variables
+  // are the same in a CSV export and in either uSD format).
+  if (r.has("topic")) c.topic = r.text("topic");
   if (r.has("instance")) c.instance = static_cast<unsigned>(r.integer("instance", 0, 255));
   c.fields = r.texts("fields");
   c.field_instances.assign(c.fields.size(), c.instance);

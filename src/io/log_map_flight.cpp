@@ -168,7 +168,7 @@ std::string topicName(const Topic& t) { return t.name + "[" + std::to_string(t.i
 // `timestamp` is in ms, not the µs readLog assumes).
 class TimeAxes {
  public:
-  TimeAxes(const LogMap& map, const std::string& source) : map_(map), source_(source) {}
+  TimeAxes(const LogMap& map, const LogData& log) : map_(map), source_(log.source), csv_(log.format == "csv") {}
   const std::vector<double>& of(const Topic& t) {
     if (map_.time_field.empty()) return t.time_s;
     auto it = axes_.find(&t);
@@ -177,6 +177,7 @@ class TimeAxes {
     for (const auto& ch : t.channels) {
       if (lowered(ch.name) == lowered(map_.time_field)) c = &ch;
     }
+    if (c == nullptr && !csv_) return t.time_s;  // a binary log's own time axis
     if (c == nullptr) {
       throw LogError(source_, "topic '" + t.name + "' has no time field '" + map_.time_field + "' (time in " + map_.source + ")");
     }
@@ -192,6 +193,7 @@ class TimeAxes {
   }
   const LogMap& map_;
   std::string source_;
+  bool csv_ = true;  // the map's time field is the time of a CSV export; binary logs have their own
   std::map<const Topic*, std::vector<double>> axes_;
 };
 
@@ -285,7 +287,7 @@ MappedFlight mapFlight(const LogData& log, const LogMap& map, const std::vector<
     if (s.name == "rotor_speed") toRotorOrder(log, map, s, out.notes, out.warnings);
   }
   // The time base: the slowest topic (interpolating it onto a faster one would invent data).
-  TimeAxes axes(map, log.source);
+  TimeAxes axes(map, log);
   const Topic* base = nullptr;
   for (const auto& s : series) {
     std::vector<const Topic*> seen;

@@ -91,7 +91,7 @@ struct Dropout {
 /// Everything a reader found in one log.
 struct LogData {
   std::string source;                          ///< the file (or buffer name) it came from
-  std::string format;                          ///< "ulog", "dataflash", "csv"
+  std::string format;                          ///< "ulog", "dataflash", "crazyflie_usd", "csv"
   std::vector<Topic> topics;                   ///< in the order first seen
   std::map<std::string, std::string> info;     ///< key → value as text (ULog info messages)
   std::map<std::string, double> parameters;    ///< vehicle parameters, last value logged
@@ -120,10 +120,21 @@ struct LogReadOptions {
 [[nodiscard]] LogData readDataFlash(std::span<const std::byte> bytes, const std::string& source,
                                     const LogReadOptions& options = {});
 
+/// Crazyflie uSD-card log (the usd deck's event-based format, versions 1 and 2, and the older
+/// fixed-frequency format; src/io/cfusd_reader.cpp). Each event type is a topic
+/// ("fixedFrequency" for the older format). Throws LogError.
+[[nodiscard]] LogData readCrazyflieUsd(const std::filesystem::path& file, const LogReadOptions& options = {});
+[[nodiscard]] LogData readCrazyflieUsd(std::span<const std::byte> bytes, const std::string& source,
+                                       const LogReadOptions& options = {});
+/// Whether `head` (a file's first bytes, 256 or all) starts like a Crazyflie uSD log: 0xBC and
+/// version 1 or 2, or a variable count followed by "name(T)," entries.
+[[nodiscard]] bool looksLikeCrazyflieUsd(std::span<const std::byte> head) noexcept;
+
 /// The formats readLog knows.
-enum class LogFormat : std::uint8_t { kULog, kDataFlash, kCsv };
-/// The format of `file` from its first bytes (ULog magic, DataFlash A3 95 80 header; anything
-/// else is taken for CSV). Throws LogError when the file cannot be opened.
+enum class LogFormat : std::uint8_t { kULog, kDataFlash, kCrazyflieUsd, kCsv };
+/// The format of `file` from its first bytes (ULog magic, DataFlash A3 95 80 header, a
+/// Crazyflie uSD header; anything else is taken for CSV). Throws LogError when the file cannot
+/// be opened.
 [[nodiscard]] LogFormat detectLogFormat(const std::filesystem::path& file);
 /// Reads `file` with the reader of its format (a CSV log becomes one topic "csv" with every
 /// numeric column; the time is the first column whose name says seconds, t/time/t_s, or the
