@@ -65,5 +65,9 @@ Runner addLogsCommand(CLI::App& app);
 /// `geaware rig {platform,rotor,calibrate}`: the virtual test rigs on the truth simulator and the
 /// calibration of the truth against the paper's measurements. docs/sim-aerodynamics.md.
 Runner addRigCommand(CLI::App& app);
+/// `geaware sitl` and `geaware bridge` (built with -DGEAWARE_BRIDGE=ON): the truth simulator
+/// as a DDS vehicle, and the estimator + controller over PX4's uXRCE-DDS topics. docs/bridge.md.
+Runner addSitlCommand(CLI::App& app);
+Runner addBridgeCommand(CLI::App& app);
 
 }  // namespace geaware::cli

@@ -84,6 +84,13 @@ int main(int argc, char** argv) {
     cli::Runner runner = add(app);  // registers the subcommand `name`
     app.get_subcommand(name)->callback([&run, runner] { run = runner; });
   }
+#ifdef GEAWARE_HAVE_BRIDGE
+  for (const auto& [name, add] : {std::pair{"sitl", &cli::addSitlCommand},
+                                  std::pair{"bridge", &cli::addBridgeCommand}}) {
+    cli::Runner runner = add(app);
+    app.get_subcommand(name)->callback([&run, runner] { run = runner; });
+  }
+#endif
 
   try {
     app.parse(argc, argv);
