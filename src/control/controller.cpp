@@ -447,6 +447,7 @@ ControllerOutput Controller::step(const ControllerInput& in) noexcept {
     out.throttle[static_cast<std::size_t>(i)] =
         std::clamp(throttle_curve_.throttle(out.n_des_rpm(i) / v_scale) + t_e + t_n[i], 0.0, 1.0);
   }
+  out.rotor_speed_correction = t_n;
   out.a_des_W = a_des;
   out.thrust_des_N = thrust;
   out.q_des_WB = q_des;

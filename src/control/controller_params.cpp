@@ -118,7 +118,7 @@ std::vector<model::FieldError> ControllerParams::validate() const {
 }
 
 bool ControllerParams::hasAdditions() const noexcept {
-  return dob_time_constant_s > 0.0 || k_i_per_s3.any() || clearance_guard;
+  return dob_time_constant_s > 0.0 || k_i_per_s3.any() || clearance_guard || rotor_speed_ki_per_s > 0.0;
 }
 
 ControllerParams recommendedControllerParams() {
@@ -137,6 +137,11 @@ ControllerParams recommendedControllerParams() {
   p.guard_brake_mps2 = 2.0;
   p.guard_reaction_time_s = 0.05;
   p.guard_rate_per_s = 4.0;
+  // docs/controller.md §4: K_n = 15 /s crosses over below the motor pole (33 rad/s) with ≈ 57° of
+  // phase margin; ±0.3 throttle covers a 25 % voltage sag at hover.
+  p.rotor_speed_ki_per_s = 15.0;
+  p.rotor_speed_limit_throttle = 0.3;
+  p.rotor_speed_lag_s = 0.04;
   return p;
 }
 
@@ -149,7 +154,9 @@ bool sameConfiguration(const ControllerParams& p, const ControllerParams& q) {
          p.k_i_per_s3 == q.k_i_per_s3 && p.integral_limit_mps2 == q.integral_limit_mps2 &&
          p.clearance_guard == q.clearance_guard && p.guard_margin_m == q.guard_margin_m &&
          p.guard_brake_mps2 == q.guard_brake_mps2 &&
-         p.guard_reaction_time_s == q.guard_reaction_time_s && p.guard_rate_per_s == q.guard_rate_per_s;
+         p.guard_reaction_time_s == q.guard_reaction_time_s && p.guard_rate_per_s == q.guard_rate_per_s &&
+         p.rotor_speed_ki_per_s == q.rotor_speed_ki_per_s &&
+         p.rotor_speed_limit_throttle == q.rotor_speed_limit_throttle && p.rotor_speed_lag_s == q.rotor_speed_lag_s;
 }
 
 /// Copies `q`'s switches and additions into `p`.
@@ -165,18 +172,20 @@ void setConfiguration(ControllerParams& p, const ControllerParams& q) {
   p.guard_brake_mps2 = q.guard_brake_mps2;
   p.guard_reaction_time_s = q.guard_reaction_time_s;
   p.guard_rate_per_s = q.guard_rate_per_s;
+  p.rotor_speed_ki_per_s = q.rotor_speed_ki_per_s;
+  p.rotor_speed_limit_throttle = q.rotor_speed_limit_throttle;
+  p.rotor_speed_lag_s = q.rotor_speed_lag_s;
 }
 
 }  // namespace
 
 std::string configurationName(const ControllerParams& p) {
-  const char* loop = p.rotor_speed_ki_per_s > 0.0 ? "+speedloop" : "";
-  if (sameConfiguration(p, recommendedControllerParams())) return std::string("recommended") + loop;
+  if (sameConfiguration(p, recommendedControllerParams())) return "recommended";
   std::string name = std::string(toString(p.acceleration)) + ":" + toString(p.torque);
   if (p.dob_time_constant_s > 0.0) name += "+dob";
   if (p.k_i_per_s3.any()) name += "+integral";
   if (p.clearance_guard) name += "+guard";
-  name += loop;
+  if (p.rotor_speed_ki_per_s > 0.0) name += "+speedloop";
   return name;
 }
 

@@ -141,6 +141,9 @@ ControllerParams defaultParameterValues() {
   v.guard_brake_mps2 = r.guard_brake_mps2;
   v.guard_reaction_time_s = r.guard_reaction_time_s;
   v.guard_rate_per_s = r.guard_rate_per_s;
+  v.rotor_speed_ki_per_s = r.rotor_speed_ki_per_s;
+  v.rotor_speed_limit_throttle = r.rotor_speed_limit_throttle;
+  v.rotor_speed_lag_s = r.rotor_speed_lag_s;
   return v;
 }
 
@@ -171,11 +174,13 @@ ControllerParams applyParameters(const ControllerParams& configuration,
     p.guard_reaction_time_s = values.guard_reaction_time_s;
     p.guard_rate_per_s = values.guard_rate_per_s;
   }
-  // The rotor-speed loop is a loop setting like the thrust correction: the file switches it on
-  // (k_i_per_s > 0) for whatever configuration flies.
-  p.rotor_speed_ki_per_s = values.rotor_speed_ki_per_s;
-  p.rotor_speed_limit_throttle = values.rotor_speed_limit_throttle;
-  p.rotor_speed_lag_s = values.rotor_speed_lag_s;
+  // The rotor-speed loop is an addition like the three above: its values apply where the
+  // configuration switches it on (`recommended`), and k_i_per_s = 0 switches it off there.
+  if (configuration.rotor_speed_ki_per_s > 0.0) {
+    p.rotor_speed_ki_per_s = values.rotor_speed_ki_per_s;
+    p.rotor_speed_limit_throttle = values.rotor_speed_limit_throttle;
+    p.rotor_speed_lag_s = values.rotor_speed_lag_s;
+  }
   return p;
 }
 

@@ -226,10 +226,25 @@ TEST(ControllerGarbage, ThrottlesStayFiniteInRangeWithoutAllocationAndHoverRetur
     out = recover(c, t, kRecoveryTicks);
     EXPECT_EQ(out.flags & kFlagNonFiniteInput, 0u);
     EXPECT_TRUE(out.a_des_W.allFinite() && out.tau_des_B.allFinite() && out.n_des_rpm.allFinite());
+    // The rotor-speed loop's integrals likewise: recover() turns every rotor at the collective
+    // speed, so what garbage wound into one motor's integral against the others stays there (in
+    // flight the rotors follow their own throttles and the loop unwinds it). There: each
+    // throttle less its correction is the hover throttle, and each correction is within bound.
+    if (cfg.params.rotor_speed_ki_per_s > 0.0) {
+      EXPECT_LE(out.rotor_speed_correction.cwiseAbs().maxCoeff(), cfg.params.rotor_speed_limit_throttle + 1e-12);
+      if (!cfg.params.k_i_per_s3.any()) {
+        for (int i = 0; i < 4; ++i) {
+          EXPECT_NEAR(out.throttle[static_cast<std::size_t>(i)] - out.rotor_speed_correction[i], t_hover,
+                      kHoverThrottleTol);
+        }
+      }
+    } else {
+      EXPECT_EQ(out.rotor_speed_correction, Eigen::Vector4d::Zero());
+    }
     if (cfg.params.k_i_per_s3.any()) {
       EXPECT_LE(out.a_int_W.cwiseAbs().maxCoeff(), cfg.params.integral_limit_mps2 + 1e-12);
       EXPECT_LT((out.a_des_W - out.a_int_W).norm(), 0.05);
-    } else {
+    } else if (cfg.params.rotor_speed_ki_per_s == 0.0) {
       for (double u : out.throttle) EXPECT_NEAR(u, t_hover, kHoverThrottleTol);
       EXPECT_LT(out.a_des_W.norm(), 0.05);
     }
@@ -274,8 +289,14 @@ TEST(ControllerGarbage, EverySingleGarbageFieldAloneKeepsTheThrottlesSane) {
           if (!(std::isfinite(u) && u >= 0.0 && u <= 1.0)) failures += what + ": throttle " + std::to_string(u) + "\n";
         }
         out = recover(c, t, kRecoveryTicks);
-        for (double u : out.throttle) {
+        // Less the rotor-speed loop's correction, which recover()'s collective speeds cannot
+        // unwind (the first test says why); it stays within its bound.
+        for (int i = 0; i < 4; ++i) {
+          const double u = out.throttle[static_cast<std::size_t>(i)] - out.rotor_speed_correction[i];
           if (!(std::abs(u - t_hover) < kHoverThrottleTol)) failures += what + ": after recovery " + std::to_string(u) + "\n";
+        }
+        if (!(out.rotor_speed_correction.cwiseAbs().maxCoeff() <= cfg.params.rotor_speed_limit_throttle)) {
+          failures += what + ": speed-loop correction out of bound\n";
         }
       }
     }

@@ -100,6 +100,7 @@ TEST(Faults, AStoppedMotorIsFlaggedAndTheMotorsAreCutWhenTheVehicleTips) {
 TEST(Faults, AWeakMotorIsHeldByTheRotorSpeedLoopAndNotMistakenForAFailure) {
   FlightScenario s = test::scenario(1.0, control::AccelerationCompensation::kModel, control::TorqueCompensation::kModelIndi);
   s.controller = control::recommendedControllerParams();
+  s.controller.rotor_speed_ki_per_s = 0.0;
   s.faults = {make(FaultKind::kMotorEffectiveness, 0.8, 3.0, std::numeric_limits<double>::infinity(), 2)};
   const FlightResult open = runFlight(s);  // the paper's open-loop throttle per motor
   s.controller.rotor_speed_ki_per_s = 15.0;

@@ -111,6 +111,8 @@ struct ControllerOutput {
   double height_used_m = 0.0;                                    ///< height the ground-effect models used [m]
   Eigen::Vector3d a_dob_W = Eigen::Vector3d::Zero();  ///< disturbance residual fed forward (subtracted) [m/s²]
   Eigen::Vector3d a_int_W = Eigen::Vector3d::Zero();  ///< integral term K^I·∫e_p (added) [m/s²]
+  /// The rotor-speed loop's correction per motor, K_n·∫(n_des − n)/n_max dt (added) [throttle].
+  Eigen::Vector4d rotor_speed_correction = Eigen::Vector4d::Zero();
   /// The clearance guard's lower bound on the commanded vertical acceleration
   /// (a_ref + K^P·e_p + K^V·e_v + K^I·∫e_p); −∞ when the guard is off, has no height or the
   /// vehicle is not sinking [m/s²].

@@ -93,8 +93,8 @@ struct ControllerParams {
   /// K_n, the per-rotor speed loop: each motor's throttle gains K_n·∫(n_des − n)/n_max dt, so an
   /// ESC that reaches less speed than the throttle curve promises (a sagging battery, a worn
   /// motor) is brought to its command; the paper's throttle is the curve's open-loop inverse
-  /// plus one shared correction. 0: off, in every configuration `recommended` included (a loop
-  /// setting, switched on by a controller-parameters file) [1/s].
+  /// plus one shared correction. An addition: 0 (off) in the paper's configurations, 15 in
+  /// `recommended` [1/s].
   double rotor_speed_ki_per_s = 0.0;
   /// Bound on each motor's speed-loop correction [throttle].
   double rotor_speed_limit_throttle = 0.3;
