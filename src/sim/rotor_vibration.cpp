@@ -33,12 +33,17 @@ void RotorVibration::advance(const PlantState& s) noexcept {
     const double r = n_rpm / params_.reference_rpm;
     const double scale = r * r;
     const auto& o = offset_rad_[static_cast<std::size_t>(i)];
-    const double once = phi + o[0];
     const double passage = blades * phi;
-    accel_B_ += accel_amplitude_ * scale *
-                Eigen::Vector3d(std::cos(once), std::sin(once), std::cos(passage + o[1]));
-    gyro_B_ += gyro_amplitude_ * scale *
-               Eigen::Vector3d(std::cos(passage + o[2]), std::cos(passage + o[3]), std::cos(phi + o[4]));
+    // Only the streams that are on: the trigonometry is most of this function's cost.
+    if (accel_amplitude_ > 0.0) {
+      const double once = phi + o[0];
+      accel_B_ += accel_amplitude_ * scale *
+                  Eigen::Vector3d(std::cos(once), std::sin(once), std::cos(passage + o[1]));
+    }
+    if (gyro_amplitude_ > 0.0) {
+      gyro_B_ += gyro_amplitude_ * scale *
+                 Eigen::Vector3d(std::cos(passage + o[2]), std::cos(passage + o[3]), std::cos(phi + o[4]));
+    }
   }
 }
 
