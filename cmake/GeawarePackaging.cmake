@@ -23,5 +23,5 @@ if(GEAWARE_DPKG_SHLIBDEPS)
 endif()
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "libeigen3-dev (>= 3.4)")
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS
-    "libyaml-cpp-dev, nlohmann-json3-dev, libfmt-dev, libceres-dev, libdlib-dev, chromium")
+    "libyaml-cpp-dev, nlohmann-json3-dev, libfmt-dev, libceres-dev, libdlib-dev, libmatio-dev, chromium")
 include(CPack)

@@ -354,7 +354,7 @@ Runner addIdentifyCommand(CLI::App& app) {
     if (name == "flight") {
       sub->add_flag("--hover", opts->hover, "the log is a hover descent: fit F_G (eq. 10)");
       sub->add_option("--map", opts->map,
-                      "read an autopilot log (PX4 .ulg, ArduPilot .bin, Crazyflie uSD, CSV export) through a log map: a built-in "
+                      "read an autopilot log (PX4 .ulg, ArduPilot .bin, Crazyflie uSD, MATLAB .mat, CSV export) through a log map: a built-in "
                       "name (px4, ardupilot, crazyflie) or a map file (docs/identification.md, \"Mapping a log\")");
       sub->add_option("--mass-kg", opts->mass_kg, "the vehicle's mass [kg] (instead of the base vehicle's)")
           ->check(finiteIn(0.0, 1000.0, true));

@@ -49,7 +49,7 @@ Runner addLogsCommand(CLI::App& app) {
   auto* inspect = cmd->add_subcommand(
       "inspect", "topics, fields, rates, time span, gaps and channel health (dead, constant, stuck, saturated, "
                  "alternating with zero) of a log");
-  inspect->add_option("log", opts->log, "the log (PX4 .ulg, ArduPilot .bin, Crazyflie uSD or CSV; format from its first bytes)")
+  inspect->add_option("log", opts->log, "the log (PX4 .ulg, ArduPilot .bin, Crazyflie uSD, MATLAB .mat or CSV; format from its first bytes)")
       ->required()
       ->check(CLI::ExistingFile);
   inspect->add_option("--json", opts->json, "write the summary of every topic and channel as JSON ('-': stdout)");

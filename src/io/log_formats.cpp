@@ -98,6 +98,7 @@ LogFormat detectLogFormat(const std::filesystem::path& file) {
   constexpr std::array<unsigned char, 7> kULog = {0x55, 0x4c, 0x6f, 0x67, 0x01, 0x12, 0x35};
   if (n >= kULog.size() && std::equal(kULog.begin(), kULog.end(), head.begin())) return LogFormat::kULog;
   if (n >= 3 && head[0] == 0xa3 && head[1] == 0x95 && head[2] == 0x80) return LogFormat::kDataFlash;
+  if (looksLikeMat(std::as_bytes(std::span(head.data(), n)))) return LogFormat::kMat;
   if (looksLikeCrazyflieUsd(std::as_bytes(std::span(head.data(), n)))) return LogFormat::kCrazyflieUsd;
   return LogFormat::kCsv;
 }
@@ -112,6 +113,7 @@ LogData readLog(const std::filesystem::path& file, const LogReadOptions& options
     case LogFormat::kULog: return readULog(file, options);
     case LogFormat::kDataFlash: return readDataFlash(file, options);
     case LogFormat::kCrazyflieUsd: return readCrazyflieUsd(file, options);
+    case LogFormat::kMat: return readMat(file, options);
     case LogFormat::kCsv: break;
   }
   return readCsvLog(file);

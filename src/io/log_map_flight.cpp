@@ -168,7 +168,8 @@ std::string topicName(const Topic& t) { return t.name + "[" + std::to_string(t.i
 // `timestamp` is in ms, not the µs readLog assumes).
 class TimeAxes {
  public:
-  TimeAxes(const LogMap& map, const LogData& log) : map_(map), source_(log.source), csv_(log.format == "csv") {}
+  TimeAxes(const LogMap& map, const LogData& log)
+      : map_(map), source_(log.source), csv_(log.format == "csv" || log.format == "mat") {}
   const std::vector<double>& of(const Topic& t) {
     if (map_.time_field.empty()) return t.time_s;
     auto it = axes_.find(&t);
@@ -193,7 +194,7 @@ class TimeAxes {
   }
   const LogMap& map_;
   std::string source_;
-  bool csv_ = true;  // the map's time field is the time of a CSV export; binary logs have their own
+  bool csv_ = true;  // the map's time field is the time of a CSV export or a .mat file; logs have their own
   std::map<const Topic*, std::vector<double>> axes_;
 };
 

@@ -91,7 +91,7 @@ struct Dropout {
 /// Everything a reader found in one log.
 struct LogData {
   std::string source;                          ///< the file (or buffer name) it came from
-  std::string format;                          ///< "ulog", "dataflash", "crazyflie_usd", "csv"
+  std::string format;                          ///< "ulog", "dataflash", "crazyflie_usd", "mat", "csv"
   std::vector<Topic> topics;                   ///< in the order first seen
   std::map<std::string, std::string> info;     ///< key → value as text (ULog info messages)
   std::map<std::string, double> parameters;    ///< vehicle parameters, last value logged
@@ -130,8 +130,16 @@ struct LogReadOptions {
 /// version 1 or 2, or a variable count followed by "name(T)," entries.
 [[nodiscard]] bool looksLikeCrazyflieUsd(std::span<const std::byte> head) noexcept;
 
+/// MATLAB .mat (v5, v7, v7.3) through libmatio (src/io/mat_reader.cpp): numeric vectors,
+/// matrix columns (`name[j]`) and struct fields as channels, top-level vectors in topic "mat", a
+/// struct's fields in a topic named after it, scalars as parameters; each variable's size is
+/// checked before its data is read. Throws LogError.
+[[nodiscard]] LogData readMat(const std::filesystem::path& file, const LogReadOptions& options = {});
+/// Whether `head` starts like a MATLAB v5/v7/v7.3 file ("MATLAB " in its text header).
+[[nodiscard]] bool looksLikeMat(std::span<const std::byte> head) noexcept;
+
 /// The formats readLog knows.
-enum class LogFormat : std::uint8_t { kULog, kDataFlash, kCrazyflieUsd, kCsv };
+enum class LogFormat : std::uint8_t { kULog, kDataFlash, kCrazyflieUsd, kMat, kCsv };
 /// The format of `file` from its first bytes (ULog magic, DataFlash A3 95 80 header, a
 /// Crazyflie uSD header; anything else is taken for CSV). Throws LogError when the file cannot
 /// be opened.
