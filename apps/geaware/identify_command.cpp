@@ -4,6 +4,7 @@
 // log, call the ident library (ident/identify.hpp), print and write.
 
 #include "commands.hpp"
+#include "flight_input.hpp"
 #include "numbers.hpp"
 
 #include <filesystem>
@@ -50,6 +51,9 @@ struct IdentifyOptions {
   std::string voltage_column;           ///< rotor: the battery-voltage column (empty: none)
   double reference_voltage_V = 0.0;     ///< rotor: the curve's reference voltage (0: median) [V]
   double mass_kg = 0.0;                 ///< vehicle mass [kg]; 0: the base vehicle's
+  std::string std_column;               ///< platform: rows are means, the std of fz_N [N] (empty: none)
+  std::string count_column;             ///< platform: rows are means, the samples behind each (empty: none)
+  bool k_T_only = false;                ///< platform: k_T alone, one height band, F_G not fitted
 };
 
 /// The --column NAME=EXPR and --const NAME=VALUE definitions (io/column_expression.hpp),
@@ -113,6 +117,8 @@ ident::FlightLog readMappedFlight(const IdentifyOptions& opt, const model::Vehic
 
 ident::PlatformLog readPlatform(const IdentifyOptions& opt, std::vector<std::string>& notes) {
   ident::PlatformColumns c;
+  c.fz_std = opt.std_column;
+  c.count = opt.count_column;
   ident::PlatformLog log = ident::readPlatformLog(opt.log, c, columnDefinitions(opt));
   notes = ident::screenPlatform(log, c);
   return log;
@@ -125,11 +131,23 @@ ident::IdentifyResult withNotes(ident::IdentifyResult r, std::vector<std::string
   return r;
 }
 
+/// A flight or hover log: through --map, or a CSV with the --column and --const definitions; screened.
+ident::FlightLog readFlight(const IdentifyOptions& opt, const model::VehicleParams& base,
+                            std::vector<std::string>& notes) {
+  if (!opt.map.empty()) return readMappedFlight(opt, base, notes);
+  ident::FlightColumns c;
+  const ident::ColumnDefinitions d = columnDefinitions(opt);
+  ident::FlightLog log = opt.hover ? ident::readHoverLog(opt.log, c, d) : ident::readFlightLog(opt.log, c, d);
+  notes = ident::screenFlight(log, c);
+  return log;
+}
+
 ident::IdentifyResult identify(const IdentifyOptions& opt, const model::VehicleParams& base) {
   ident::IdentifyOptions io_opt;
   io_opt.robust = ident::robustLoss(opt.loss);
   io_opt.height_bands = opt.height_bands;
   io_opt.tilt_limit_deg = opt.tilt_limit_deg;
+  io_opt.k_T_only = opt.k_T_only;
   if (opt.ground_effect == "table") {
     io_opt.ground_effect = ident::CurveForm::kTable;
     io_opt.table_top_m = opt.table_top_m;
@@ -154,15 +172,7 @@ ident::IdentifyResult identify(const IdentifyOptions& opt, const model::VehicleP
     const ident::PlatformLog log = readPlatform(opt, notes);
     return withNotes(ident::identifyCorrelations(log, base), notes);
   }
-  ident::FlightLog log;
-  if (!opt.map.empty()) {
-    log = readMappedFlight(opt, base, notes);
-  } else {
-    ident::FlightColumns c;
-    const ident::ColumnDefinitions d = columnDefinitions(opt);
-    log = opt.hover ? ident::readHoverLog(opt.log, c, d) : ident::readFlightLog(opt.log, c, d);
-    notes = ident::screenFlight(log, c);
-  }
+  const ident::FlightLog log = readFlight(opt, base, notes);
   return withNotes(opt.hover ? ident::identifyHover(log, base, io_opt) : ident::identifyFlight(log, base, io_opt),
                    notes);
 }
@@ -180,7 +190,7 @@ io::Json toJson(const ident::IdentifyResult& r, const IdentifyOptions& opt) {
   io::Json& fits = doc["fits"] = io::Json::object();
   for (const auto& f : r.residuals) {
     fits[f.name] = {{"residual_rms", f.stats.residual_rms}, {"unit", f.unit}, {"count", f.stats.count},
-                    {"outliers", f.stats.outliers}};
+                    {"outliers", f.stats.outliers}, {"condition_number", f.stats.condition_number}};
   }
   doc["warnings"] = r.warnings;
   doc["notes"] = r.notes;
@@ -265,8 +275,8 @@ int runIdentify(const IdentifyOptions& opt) {
   for (const auto& w : r.blocking) std::cerr << "geaware: warning: " << w << "\n";
   if (!opt.out.empty() && !r.blocking.empty() && !opt.accept_warnings) {
     throw std::runtime_error("--out " + opt.out + " not written: " + std::to_string(r.blocking.size()) +
-                             " fitted value(s) outside their physical range (warnings above); --accept-warnings "
-                             "writes it anyway");
+                             " fitted value(s) outside their physical range or at a bound (warnings above); "
+                             "--accept-warnings writes it anyway");
   }
   if (!opt.out.empty()) {
     r.update.provenance = std::filesystem::path(opt.log).filename().string();
@@ -285,6 +295,20 @@ int runIdentify(const IdentifyOptions& opt) {
 }
 
 }  // namespace
+
+ident::FlightLog readFlightInput(const std::string& log, const std::string& map, const std::vector<std::string>& columns,
+                                 const std::vector<std::string>& constants, const model::VehicleParams& base) {
+  IdentifyOptions opt;
+  opt.kind = "flight";
+  opt.log = log;
+  opt.map = map;
+  opt.columns = columns;
+  opt.constants = constants;
+  std::vector<std::string> notes;
+  ident::FlightLog out = readFlight(opt, base, notes);
+  for (const auto& n : notes) std::cerr << "geaware: note: " << log << ": " << n << "\n";
+  return out;
+}
 
 Runner addIdentifyCommand(CLI::App& app) {
   auto opts = std::make_shared<IdentifyOptions>();
@@ -318,7 +342,7 @@ Runner addIdentifyCommand(CLI::App& app) {
     if (name != "correlations") {
       sub->add_flag("--accept-warnings", opts->accept_warnings,
                     "write --out even when a fitted value is outside its physical range (a negative drag band, "
-                    "k_T, g1 or g2 <= 0)");
+                    "left out of the table; k_T, g1 or g2 <= 0) or ended at a bound of its fit");
     }
     sub->add_option("--loss", opts->loss, "robust loss")->check(CLI::IsMember({"huber", "cauchy", "none"}))->capture_default_str();
     if (name == "rotor") {
@@ -347,6 +371,15 @@ Runner addIdentifyCommand(CLI::App& app) {
           ->capture_default_str();
       sub->add_option("--table-heights", opts->table_heights,
                       "table: explicit knot heights FROM:TO:STEP for both curves [m] (instead of the logged heights)");
+      sub->add_flag("--k-T-only", opts->k_T_only,
+                    "fit k_T alone from every level sample as one height band, F_G taken as 0 and not fitted "
+                    "(a stand at one height, or out of ground effect)");
+      sub->add_option("--std-column", opts->std_column,
+                      "rows are means (a table of mean ± std per height): the column of fz_N's standard deviation "
+                      "[N]; each row is weighted 1/σ², σ = std/√count");
+      sub->add_option("--count-column", opts->count_column,
+                      "rows are means: the column of the samples behind each row (default: 1 each); the height "
+                      "bands and sample thresholds count these samples");
     }
     if (name == "platform" || name == "flight") {
       sub->add_option("--height-bands", opts->height_bands, "number of height bands")->check(wholeIn(1, 100))->capture_default_str();

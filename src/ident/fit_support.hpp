@@ -76,13 +76,30 @@ inline void warnSparseKnots(std::vector<std::string>& warnings, const std::strin
 
 /// The joint fit of (k_T, g1, g2) in f_z = k_T·S·(1 + g2/(h² + g1)) for per-sample S = Σn², h
 /// and f_z [N] (robust, Ceres, from a variable-projection initial guess): the level board's
-/// f̃_z, or a hover's m·a_z + k_T,observer·S. Fills everything but the warnings. Throws
-/// IdentError naming `source` and `what`.
+/// f̃_z, or a hover's m·a_z + k_T,observer·S. `w`: the samples' weights (empty: 1; 1/σ² with
+/// robust.known_variances). Fills everything but the warnings. Throws IdentError naming
+/// `source` and `what`.
 AdditionalThrustFit fitThrustWithGroundEffect(const std::vector<double>& S,
                                               const std::vector<double>& h,
                                               const std::vector<double>& fz,
+                                              const std::vector<double>& w,
                                               const RobustOptions& robust,
                                               const std::string& source, const std::string& what);
+
+/// One blocking warning per parameter of a nonlinear fit that ended at a bound (fit.at_bound):
+/// the optimum lies outside the range the fit allows, so the value is the bound, not a fit.
+inline void blockAtBounds(std::vector<std::string>& blocking, const LeastSquaresFit& fit,
+                          const NonlinearProblem& problem, std::initializer_list<const char*> names,
+                          const std::string& what) {
+  const std::vector<const char*> n(names);
+  for (const int k : fit.at_bound) {
+    const auto i = static_cast<std::size_t>(k);
+    blocking.push_back(std::string(i < n.size() ? n[i] : "a parameter") + " = " + num(fit.x(k)) +
+                       " ended at its bound (allowed [" + num(problem.lower[i]) + ", " + num(problem.upper[i]) +
+                       "]) in the " + what + ": the data put its optimum outside the physical range, so the value "
+                       "is the bound, not a fit");
+  }
+}
 
 /// The fit, or an IdentError naming the log and what was being fitted.
 inline const LeastSquaresFit& require(const LeastSquaresFit& fit, const std::string& source,
@@ -92,15 +109,22 @@ inline const LeastSquaresFit& require(const LeastSquaresFit& fit, const std::str
 }
 
 /// Splits heights sorted ascending into `bands` ranges [first, last) of about equal count; equal
-/// heights never straddle two ranges (a platform logs many samples at each height).
+/// heights never straddle two ranges (a platform logs many samples at each height). `samples`
+/// (empty: 1 each): the samples behind each row (rows that are means), which the split counts.
 inline std::vector<std::pair<std::size_t, std::size_t>> bandRanges(
-    const std::vector<double>& sorted_h, int bands) {
+    const std::vector<double>& sorted_h, int bands, const std::vector<double>& samples = {}) {
   std::vector<std::pair<std::size_t, std::size_t>> out;
   const std::size_t n = sorted_h.size();
   const auto count = static_cast<std::size_t>(std::max(1, bands));
+  // cumulative[i]: samples in rows [0, i).
+  std::vector<double> cumulative(n + 1, 0.0);
+  for (std::size_t i = 0; i < n; ++i) cumulative[i + 1] = cumulative[i] + (samples.empty() ? 1.0 : samples[i]);
   std::size_t first = 0;
   for (std::size_t b = 0; b < count && first < n; ++b) {
-    std::size_t last = b + 1 == count ? n : std::max((b + 1) * n / count, first + 1);
+    const double target = std::floor(static_cast<double>(b + 1) * cumulative[n] / static_cast<double>(count));
+    std::size_t last = first + 1;
+    while (last < n && cumulative[last] < target) ++last;
+    if (b + 1 == count) last = n;
     while (last < n && sorted_h[last] == sorted_h[last - 1]) ++last;
     out.emplace_back(first, last);
     first = last;

@@ -34,7 +34,7 @@ AdditionalThrustFit fitHoverAdditionalThrust(const FlightLog& log, double mass_k
     f[i] = mass_kg * log.a_ext_W[2][i] + k_T * S[i];
   }
   AdditionalThrustFit out = detail::fitThrustWithGroundEffect(
-      S, log.h_m, f, robust, log.source, "k_T, g1, g2 of F_G(h) = g2/(h² + g1) from the hover descent");
+      S, log.h_m, f, {}, robust, log.source, "k_T, g1, g2 of F_G(h) = g2/(h² + g1) from the hover descent");
   detail::warnCurveFit(out.warnings, "hover F_G fit",
                        {{"k_T", &out.k_T_N_per_rpm2}, {"g1", &out.g1_m2}, {"g2", &out.g2_m2}},
                        out.h_min_m, out.h_max_m,
@@ -194,10 +194,12 @@ DragFit fitDrag(const FlightLog& log, double mass_kg, const DragFitOptions& opti
 model::DragTableParams dragTable(const DragFit& fit) {
   model::DragTableParams t;
   for (const auto& b : fit.bands) {
+    // A band fitted negative is no drag: left out, never written as 0 (issue 11).
+    if (!(b.d_x_N_per_mps.value >= 0.0 && b.d_y_N_per_mps.value >= 0.0)) continue;
     // Bands are disjoint and sorted, so the mean heights increase strictly.
     t.heights_m.push_back(b.h_min_m == b.h_max_m ? b.h_min_m : b.h_mean_m);
-    t.d_x_N_per_mps.push_back(std::max(0.0, b.d_x_N_per_mps.value));
-    t.d_y_N_per_mps.push_back(std::max(0.0, b.d_y_N_per_mps.value));
+    t.d_x_N_per_mps.push_back(b.d_x_N_per_mps.value);
+    t.d_y_N_per_mps.push_back(b.d_y_N_per_mps.value);
   }
   return t;
 }

@@ -34,10 +34,17 @@ void addStatsTables(IdentifyResult& r) {
                            fmt::format("{:.3g}", p.estimate.std_error), p.unit});
   }
   r.report_tables.push_back(std::move(params));
-  TextTable fits{"Residuals", {"fit", "residual RMS", "unit", "samples", "outliers"}, {}};
+  TextTable fits{"Residuals", {"fit", "residual RMS", "unit", "samples", "outliers", "condition number"}, {}};
   for (const auto& f : r.residuals) {
     fits.rows.push_back({f.name, fmt::format("{:.4g}", f.stats.residual_rms), f.unit,
-                         std::to_string(f.stats.count), std::to_string(f.stats.outliers)});
+                         std::to_string(f.stats.count), std::to_string(f.stats.outliers),
+                         fmt::format("{:.3g}", f.stats.condition_number)});
+    if (f.stats.condition_number > kIllConditioned) {
+      r.warnings.push_back(fmt::format("fit {}: condition number {:.3g} of its design (above {:g}): its parameters "
+                                       "trade off against each other, the data determine only a combination of "
+                                       "them (widen the heights or rotor speeds logged)",
+                                       f.name, f.stats.condition_number, kIllConditioned));
+    }
   }
   r.report_tables.push_back(std::move(fits));
 }
@@ -87,6 +94,7 @@ IdentifyResult identifyRotorStand(const RotorStandLog& log, const IdentifyOption
                  {"torque", fit.torque, "N·m"},
                  {"throttle curve (n²/n)", fit.throttle, "rpm"}};
   r.warnings = fit.warnings;
+  r.blocking = fit.blocking;
   addRotorFit(r.update, fit);
   detail::addStatsTables(r);
 
@@ -167,12 +175,8 @@ IdentifyResult identifyHover(const FlightLog& log, const model::VehicleParams& b
                   {"ground_effect.additional_thrust.g2_m2", fit.g2_m2, "m²"}};
   r.residuals = {{"m·a_ext,z + k_T·Σn² = k_T'·Σn²·(1 + F_G(h))", fit.stats, "N"}};
   r.warnings = fit.warnings;
-  for (const auto& [name, e] : {std::pair{"k_T", fit.k_T_N_per_rpm2}, std::pair{"g1", fit.g1_m2},
-                                std::pair{"g2", fit.g2_m2}}) {
-    if (e.value > 0.0) continue;
-    r.blocking.push_back(fmt::format("{} = {:.4g} ± {:.3g} fitted at or below 0, outside its physical range (> 0)",
-                                     name, e.value, e.std_error));
-  }
+  // k_T, g1 and g2 are bounded to [0 or 1e-9, …] in the fit: a value at or below 0 is one at its bound.
+  r.blocking = fit.blocking;
   addAdditionalThrust(r.update, fit);  // k_T in hover goes with its g1, g2
   detail::addStatsTables(r);
   PlotData fg{"F_G from the hover descent (eq. 10)", "h [m]", "F_G [-]", {}};
@@ -221,10 +225,11 @@ IdentifyResult identifyFlight(const FlightLog& log, const model::VehicleParams& 
   for (const auto& band : fit.bands) {
     for (const auto& [axis, d] : {std::pair{"d_x", band.d_x_N_per_mps}, std::pair{"d_y", band.d_y_N_per_mps}}) {
       if (d.value >= 0.0) continue;
-      // Drag opposes the motion: a negative coefficient is no drag, and --out would write it as 0.
+      // Drag opposes the motion: a negative coefficient is no drag. It is never written (as 0 or
+      // otherwise): the band is left out of the table --out writes (dragTable).
       r.blocking.push_back(fmt::format("{} at h = {:.3g} m fitted negative ({:.4g} ± {:.3g} N/(m/s)), outside the "
-                                       "physical range d ≥ 0 (a wrong mass, k_T or frame in the log?); --out "
-                                       "would write it as 0",
+                                       "physical range d ≥ 0 (a wrong mass, k_T or frame in the log?); the band is "
+                                       "left out of the drag table --out writes",
                                        axis, band.h_mean_m, d.value, d.std_error));
     }
   }
@@ -272,8 +277,9 @@ std::string resultText(const IdentifyResult& result) {
                      p.estimate.std_error, p.unit);
   }
   for (const auto& f : result.residuals) {
-    s += fmt::format("residual RMS {:<32} {:>10.4g} {:<6} ({} samples, {} outliers)\n", f.name,
-                     f.stats.residual_rms, f.unit, f.stats.count, f.stats.outliers);
+    s += fmt::format("residual RMS {:<32} {:>10.4g} {:<6} ({} samples, {} outliers, condition number {:.3g})\n",
+                     f.name, f.stats.residual_rms, f.unit, f.stats.count, f.stats.outliers,
+                     f.stats.condition_number);
   }
   for (const auto& n : result.notes) s += "note: " + n + "\n";
   return s;

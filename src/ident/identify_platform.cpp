@@ -62,6 +62,30 @@ PlatformFitOptions platformOptions(const IdentifyOptions& options) {
   return po;
 }
 
+/// k_T alone (IdentifyOptions::k_T_only): one height band, F_G taken as 0, said in the notes.
+FittedCurve thrustAlone(IdentifyResult& r, const PlatformLog& log, const PlatformFitOptions& po,
+                        const model::VehicleParams& base) {
+  const ThrustAloneFit fit = fitThrustAlone(log, po);
+  r.parameters = {{"rotor.k_T_N_per_rpm2", fit.k_T_N_per_rpm2, "N/rpm²"}};
+  r.residuals = {{"f_z = k_T·Σn² (F_G taken as 0)", fit.stats, "N"}};
+  r.warnings = fit.warnings;
+  setEstimate(r.update, "rotor.k_T_N_per_rpm2", fit.k_T_N_per_rpm2);
+  if (!(fit.k_T_N_per_rpm2.value > 0.0)) {
+    r.blocking.push_back(fmt::format("k_T = {:.4g} fitted at or below 0, outside its physical range (> 0)",
+                                     fit.k_T_N_per_rpm2.value));
+  }
+  r.notes.push_back(fmt::format("F_G not fitted (--k-T-only): k_T from every level sample, {:.4g}–{:.4g} m, as one "
+                                "height band, with F_G taken as 0",
+                                fit.h_min_m, fit.h_max_m));
+  const double reach_m = 3.0 * base.propeller_radius_m;
+  if (fit.h_min_m < reach_m) {
+    r.warnings.push_back(fmt::format("--k-T-only: level samples down to {:.4g} m, below 3 rotor radii ({:.4g} m): "
+                                     "their ground effect is counted as k_T",
+                                     fit.h_min_m, reach_m));
+  }
+  return {[](double) { return 0.0; }, fit.h_min_m, fit.h_max_m};
+}
+
 /// k_T and F_G from the level board, in the chosen form.
 FittedCurve additionalThrust(IdentifyResult& r, const PlatformLog& log, const PlatformFitOptions& po,
                              CurveForm form) {
@@ -83,6 +107,7 @@ FittedCurve additionalThrust(IdentifyResult& r, const PlatformLog& log, const Pl
                   {"ground_effect.additional_thrust.g2_m2", fit.g2_m2, "m²"}};
   r.residuals = {{fit_name, fit.stats, "N"}};
   r.warnings = fit.warnings;
+  r.blocking = fit.blocking;
   addAdditionalThrust(r.update, fit);
   FittedCurve c{[g1 = fit.g1_m2.value, g2 = fit.g2_m2.value](double h) { return g2 / (h * h + g1); },
                 fit.h_min_m, fit.h_max_m};
@@ -121,6 +146,7 @@ FittedCurve leveling(IdentifyResult& r, const PlatformLog& log, const LevelingIn
   r.parameters.push_back({"ground_effect.leveling_torque.scale_m4", fit.scale_m4, "m⁴"});
   r.residuals.push_back({"leveling torque", fit.stats, "N·m"});
   detail::appendWarnings(r.warnings, fit.warnings);
+  detail::appendWarnings(r.blocking, fit.blocking);
   addLeveling(r.update, fit);
   FittedCurve c{[g3 = fit.g3_m.value, g4 = fit.g4_m2.value, s = fit.scale_m4.value](double h) {
                   return levelingCoefficient(g3, g4, s, h);
@@ -192,9 +218,9 @@ IdentifyResult identifyPlatform(const PlatformLog& log, const model::VehiclePara
   IdentifyResult r;
   r.kind = "platform";
   MixingFit mixing = fitMixing(log, base.diagonal_rotor_distance_m, po);
-  const FittedCurve thrust = additionalThrust(r, log, po, options.ground_effect);
-  const double k_T = r.fits.additional_thrust ? r.fits.additional_thrust->k_T_N_per_rpm2.value
-                                              : r.fits.additional_thrust_table->k_T_N_per_rpm2.value;
+  const FittedCurve thrust = options.k_T_only ? thrustAlone(r, log, po, base)
+                                              : additionalThrust(r, log, po, options.ground_effect);
+  const double k_T = r.parameters.front().estimate.value;  // rotor.k_T_N_per_rpm2 comes first
   const double k_TY = mixing.k_TY_N_per_rpm2 ? mixing.k_TY_N_per_rpm2->value : base.rotor.k_TY_N_per_rpm2;
   const TextTable bands = bandTable(mixing);
   mixingCoefficients(r, std::move(mixing));

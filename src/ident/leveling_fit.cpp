@@ -179,6 +179,7 @@ LevelingFit fitLeveling(const PlatformLog& log, const LevelingInputs& in,
   problem.upper = {100.0, 100.0, 100.0};
   const auto fit = fitNonlinear(problem, x0, options.robust);
   detail::require(fit, log.source, "the leveling torque M_G(h) = scale·h/(h² + g3·h + g4)²");
+  detail::blockAtBounds(out.blocking, fit, problem, {"g3", "g4", "scale"}, "leveling-torque fit");
   out.g3_m = fit.estimate(0);
   out.g4_m2 = fit.estimate(1);
   out.scale_m4 = fit.estimate(2);

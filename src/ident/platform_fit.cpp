@@ -33,13 +33,25 @@ std::array<double, 3> mixingCombinations(const PlatformLog& log, std::size_t i) 
   return {-n1 + n2 + n3 - n4, -n1 + n2 - n3 + n4, -n1 - n2 + n3 + n4};
 }
 
-std::vector<std::size_t> levelSamples(const PlatformLog& log, double level_tilt_deg) {
+/// Rows that are means count as their samples (PlatformLog::count): the thresholds of the fits
+/// ("at least 10 level samples") count samples, not rows.
+std::vector<std::size_t> levelSamples(const PlatformLog& log, double level_tilt_deg, double* samples = nullptr) {
   std::vector<std::size_t> idx;
   idx.reserve(log.size());
+  double total = 0.0;
   for (std::size_t i = 0; i < log.size(); ++i) {
-    if (std::abs(log.tilt_deg[i]) <= level_tilt_deg) idx.push_back(i);
+    if (std::abs(log.tilt_deg[i]) > level_tilt_deg) continue;
+    idx.push_back(i);
+    total += log.samples(i);
   }
+  if (samples != nullptr) *samples = total;
   return idx;
+}
+
+/// The robust options of a fit of f_z: its weights are known variances when the stds are given.
+RobustOptions fzRobust(const PlatformLog& log, RobustOptions robust) {
+  robust.known_variances = log.fzVariancesKnown();
+  return robust;
 }
 
 }  // namespace
@@ -66,13 +78,20 @@ namespace detail {
 AdditionalThrustFit fitThrustWithGroundEffect(const std::vector<double>& S,
                                               const std::vector<double>& h,
                                               const std::vector<double>& fz,
+                                              const std::vector<double>& w,
                                               const RobustOptions& robust,
                                               const std::string& source, const std::string& what) {
   AdditionalThrustFit out;
   out.h_min_m = *std::min_element(h.begin(), h.end());
   out.h_max_m = *std::max_element(h.begin(), h.end());
   std::vector<double> h2(h.size());
-  for (std::size_t j = 0; j < h.size(); ++j) h2[j] = h[j] * h[j];
+  std::vector<double> sw(h.size(), 1.0);  // √w
+  std::vector<double> swfz(h.size());     // √w·f_z, for the robust scale's floor
+  for (std::size_t j = 0; j < h.size(); ++j) {
+    h2[j] = h[j] * h[j];
+    if (!w.empty()) sw[j] = std::sqrt(w[j]);
+    swfz[j] = sw[j] * fz[j];
+  }
   // Initial guess by variable projection: for a fixed g1 the model is linear in k_T and
   // k_T·g2, so scan g1 on a log grid (on at most ~20,000 samples) and keep the best.
   const std::size_t stride = std::max<std::size_t>(1, S.size() / 20000);
@@ -84,10 +103,10 @@ AdditionalThrustFit fitThrustWithGroundEffect(const std::vector<double>& S,
     Eigen::Vector2d b = Eigen::Vector2d::Zero();
     double yy = 0.0;
     for (std::size_t j = 0; j < S.size(); j += stride) {
-      const Eigen::Vector2d x(S[j], S[j] / (h2[j] + g1));
+      const Eigen::Vector2d x = sw[j] * Eigen::Vector2d(S[j], S[j] / (h2[j] + g1));
       A += x * x.transpose();
-      b += x * fz[j];
-      yy += fz[j] * fz[j];
+      b += x * swfz[j];
+      yy += swfz[j] * swfz[j];
     }
     if (!(A.determinant() > 1e-12 * A(0, 0) * A(1, 1))) continue;
     const Eigen::Vector2d beta = A.ldlt().solve(b);
@@ -109,19 +128,22 @@ AdditionalThrustFit fitThrustWithGroundEffect(const std::vector<double>& S,
     if (!(x[1] > 0.0)) return false;
     const double d = h2[j] + x[1];
     const double F = x[2] / d;
-    r = fz[j] - x[0] * S[j] * (1.0 + F);
+    const double s = sw[j] * S[j];
+    r = swfz[j] - x[0] * s * (1.0 + F);
     if (g != nullptr) {
-      g[0] = -S[j] * (1.0 + F);
-      g[1] = x[0] * S[j] * x[2] / (d * d);
-      g[2] = -x[0] * S[j] / d;
+      g[0] = -s * (1.0 + F);
+      g[1] = x[0] * s * x[2] / (d * d);
+      g[2] = -x[0] * s / d;
     }
     return true;
   };
+  problem.scale_floor = scaleFloor(swfz);
   problem.scales = {x0(0), std::max(x0(1), 1e-4), std::max(x0(2), 1e-4)};
   problem.lower = {0.0, 1e-9, 0.0};
   problem.upper = {std::numeric_limits<double>::infinity(), 100.0, 100.0};
   const auto fit = fitNonlinear(problem, x0, robust);
   detail::require(fit, source, what);
+  detail::blockAtBounds(out.blocking, fit, problem, {"k_T", "g1", "g2"}, "fit of " + what);
   out.k_T_N_per_rpm2 = fit.estimate(0);
   out.g1_m2 = fit.estimate(1);
   out.g2_m2 = fit.estimate(2);
@@ -133,9 +155,10 @@ AdditionalThrustFit fitThrustWithGroundEffect(const std::vector<double>& S,
 }  // namespace detail
 
 AdditionalThrustFit fitAdditionalThrust(const PlatformLog& log, const PlatformFitOptions& options) {
-  const std::vector<std::size_t> idx = levelSamples(log, options.level_tilt_deg);
-  if (idx.size() < 10) {
-    throw IdentError(log.source + ": cannot fit F_G: only " + std::to_string(idx.size()) +
+  double level = 0.0;
+  const std::vector<std::size_t> idx = levelSamples(log, options.level_tilt_deg, &level);
+  if (level < 10.0 || idx.size() < 3) {
+    throw IdentError(log.source + ": cannot fit F_G: only " + num(level) +
                      " samples with a level board (|tilt| ≤ " + num(options.level_tilt_deg) +
                      "°), at least 10 are needed");
   }
@@ -143,13 +166,15 @@ AdditionalThrustFit fitAdditionalThrust(const PlatformLog& log, const PlatformFi
   std::vector<double> S(idx.size());
   std::vector<double> h(idx.size());
   std::vector<double> fz(idx.size());
+  std::vector<double> w(idx.size());
   for (std::size_t j = 0; j < idx.size(); ++j) {
     S[j] = sumSquares(log, idx[j]);
     h[j] = log.h_m[idx[j]];
     fz[j] = log.f_N[2][idx[j]];
+    w[j] = log.fzWeight(idx[j]);
   }
   AdditionalThrustFit out = detail::fitThrustWithGroundEffect(
-      S, h, fz, options.robust, log.source, "k_T, g1, g2 (F_G(h) = g2/(h² + g1) on the level board)");
+      S, h, fz, w, fzRobust(log, options.robust), log.source, "k_T, g1, g2 (F_G(h) = g2/(h² + g1) on the level board)");
   detail::warnCurveFit(out.warnings, "F_G fit", {{"g1", &out.g1_m2}, {"g2", &out.g2_m2}},
                        out.h_min_m, out.h_max_m,
                        "log heights from the lowest flyable to well out of ground effect", out.stats);
@@ -160,9 +185,10 @@ AdditionalThrustTableFit fitAdditionalThrustTable(const PlatformLog& log,
                                                   const PlatformFitOptions& options) {
   AdditionalThrustTableFit out;
   const std::string what = "F_G as a table";
-  const std::vector<std::size_t> idx = levelSamples(log, options.level_tilt_deg);
-  if (idx.size() < 10) {
-    throw IdentError(log.source + ": cannot fit " + what + ": only " + std::to_string(idx.size()) +
+  double level = 0.0;
+  const std::vector<std::size_t> idx = levelSamples(log, options.level_tilt_deg, &level);
+  if (level < 10.0) {
+    throw IdentError(log.source + ": cannot fit " + what + ": only " + num(level) +
                      " samples with a level board (|tilt| ≤ " + num(options.level_tilt_deg) +
                      "°), at least 10 are needed");
   }
@@ -172,8 +198,8 @@ AdditionalThrustTableFit fitAdditionalThrustTable(const PlatformLog& log,
   out.h_max_m = *std::max_element(h.begin(), h.end());
   const std::vector<double> knots = chooseKnots(h, options.thrust_table, log.source, what);
   const std::size_t n_knots = knots.size();
-  out.tail_samples = static_cast<std::size_t>(
-      std::count_if(h.begin(), h.end(), [&](double x) { return x > knots.back(); }));
+  const auto samples = [&](std::size_t j) { return static_cast<std::size_t>(std::llround(log.samples(idx[j]))); };
+  for (std::size_t j = 0; j < h.size(); ++j) out.tail_samples += h[j] > knots.back() ? samples(j) : 0;
   if (out.tail_samples == 0) {
     throw IdentError(log.source + ": cannot fit " + what + ": no level sample lies above the top " +
                      "knot (" + num(knots.back()) + " m). Only there, where F_G follows its 1/h² " +
@@ -182,11 +208,11 @@ AdditionalThrustTableFit fitAdditionalThrustTable(const PlatformLog& log,
   }
   // Parameters (k_T, k_T·F_0, …, k_T·F_{N−1}): f̃_z = k_T·S + Σ_j (k_T·F_j)·S·φ_j(h).
   out.F_G.samples.assign(n_knots, 0);
-  for (double x : h) {
+  for (std::size_t j = 0; j < h.size(); ++j) {
     int index[2];
     double weight[2];
-    const int c = tableBasis(knots, x, index, weight);
-    for (int e = 0; e < c; ++e) ++out.F_G.samples[static_cast<std::size_t>(index[e])];
+    const int c = tableBasis(knots, h[j], index, weight);
+    for (int e = 0; e < c; ++e) out.F_G.samples[static_cast<std::size_t>(index[e])] += samples(j);
   }
   const auto fit = fitSparseLinear(
       idx.size(), static_cast<int>(n_knots) + 1,
@@ -203,10 +229,10 @@ AdditionalThrustTableFit fitAdditionalThrustTable(const PlatformLog& log,
         }
         count = c + 1;
         y = log.f_N[2][idx[j]];
-        w = 1.0;
+        w = log.fzWeight(idx[j]);
         return S > 0.0;
       },
-      options.robust);
+      fzRobust(log, options.robust));
   detail::require(fit, log.source, "k_T and " + what + " (" + std::to_string(n_knots) + " knots)");
   // F_j = b_j/k_T, covariance by the delta method.
   const double a = fit.x(0);
@@ -230,26 +256,62 @@ AdditionalThrustTableFit fitAdditionalThrustTable(const PlatformLog& log,
   return out;
 }
 
+ThrustAloneFit fitThrustAlone(const PlatformLog& log, const PlatformFitOptions& options) {
+  ThrustAloneFit out;
+  double level = 0.0;
+  const std::vector<std::size_t> idx = levelSamples(log, options.level_tilt_deg, &level);
+  if (level < 2.0 || idx.empty()) {
+    throw IdentError(log.source + ": cannot fit k_T: only " + num(level) + " samples with a level board (|tilt| ≤ " +
+                     num(options.level_tilt_deg) + "°)");
+  }
+  const auto fit = fitLinear(
+      idx.size(), 1,
+      [&](std::size_t j, double* x, double& y, double& w) {
+        x[0] = sumSquares(log, idx[j]);
+        y = log.f_N[2][idx[j]];
+        w = log.fzWeight(idx[j]);
+        return x[0] > 0.0;
+      },
+      fzRobust(log, options.robust));
+  detail::require(fit, log.source, "k_T (f_z = k_T·Σn², F_G taken as 0)");
+  out.k_T_N_per_rpm2 = fit.estimate(0);
+  out.stats = fit.stats;
+  out.h_min_m = log.h_m[idx.front()];
+  out.h_max_m = out.h_min_m;
+  for (const std::size_t i : idx) {
+    out.h_min_m = std::min(out.h_min_m, log.h_m[i]);
+    out.h_max_m = std::max(out.h_max_m, log.h_m[i]);
+  }
+  detail::warnIfImprecise(out.warnings, "k_T", out.k_T_N_per_rpm2, "log more samples or a wider rotor-speed range");
+  detail::warnIfManyOutliers(out.warnings, "k_T fit", out.stats);
+  return out;
+}
+
 MixingFit fitMixing(const PlatformLog& log, double b, const PlatformFitOptions& options) {
   MixingFit out;
   const double arm = model::mixerArm_m(b);
-  const std::vector<std::size_t> idx = levelSamples(log, options.level_tilt_deg);
-  if (idx.size() < 10) {
-    throw IdentError(log.source + ": cannot fit the mixing coefficients: only " +
-                     std::to_string(idx.size()) + " samples with a level board");
+  double level = 0.0;
+  const std::vector<std::size_t> idx = levelSamples(log, options.level_tilt_deg, &level);
+  if (level < 10.0) {
+    throw IdentError(log.source + ": cannot fit the mixing coefficients: only " + num(level) +
+                     " samples with a level board");
   }
   // Regressors of the four coefficients per level sample: thrust Σn² (k_T), roll and pitch
-  // arm·(A·N²) (k_TX, k_TY), yaw A·N² (k_I); and the measured f_z, τ_x, τ_y, τ_z.
+  // arm·(A·N²) (k_TX, k_TY), yaw A·N² (k_I); and the measured f_z, τ_x, τ_y, τ_z; the weights
+  // of f_z (1/σ² when the stds are given) and of the torques (the samples behind the row).
   struct Row {
     std::array<double, 4> x;
     std::array<double, 4> y;
+    double w_fz;
+    double w_tau;
   };
   std::vector<Row> rows(idx.size());
   for (std::size_t j = 0; j < idx.size(); ++j) {
     const std::size_t i = idx[j];
     const auto c = mixingCombinations(log, i);
     rows[j] = {{sumSquares(log, i), arm * c[0], arm * c[1], c[2]},
-               {log.f_N[2][i], log.tau_Nm[0][i], log.tau_Nm[1][i], log.tau_Nm[2][i]}};
+               {log.f_N[2][i], log.tau_Nm[0][i], log.tau_Nm[1][i], log.tau_Nm[2][i]},
+               log.fzWeight(i), log.samples(i)};
   }
   // One-coefficient fit of column `k` on the samples j in [first, last) of `order`.
   auto fitOne = [&](int k, const std::vector<std::size_t>& order, std::size_t first,
@@ -260,10 +322,10 @@ MixingFit fitMixing(const PlatformLog& log, double b, const PlatformFitOptions& 
           const Row& r = rows[order[first + m]];
           x[0] = r.x[static_cast<std::size_t>(k)];
           y = r.y[static_cast<std::size_t>(k)];
-          w = 1.0;
+          w = k == 0 ? r.w_fz : r.w_tau;
           return true;
         },
-        options.robust);
+        k == 0 ? fzRobust(log, options.robust) : options.robust);
     if (!ls.ok) return std::nullopt;
     if (stats != nullptr) *stats = ls.stats;
     return ls.estimate(0);
@@ -299,15 +361,23 @@ MixingFit fitMixing(const PlatformLog& log, double b, const PlatformFitOptions& 
     return log.h_m[idx[a]] < log.h_m[idx[c]];
   });
   std::vector<double> sorted_h(order.size());
-  for (std::size_t m = 0; m < order.size(); ++m) sorted_h[m] = log.h_m[idx[order[m]]];
-  for (const auto& [first, last] : detail::bandRanges(sorted_h, options.height_bands)) {
+  std::vector<double> sorted_samples(order.size());
+  for (std::size_t m = 0; m < order.size(); ++m) {
+    sorted_h[m] = log.h_m[idx[order[m]]];
+    sorted_samples[m] = log.samples(idx[order[m]]);
+  }
+  for (const auto& [first, last] : detail::bandRanges(sorted_h, options.height_bands, sorted_samples)) {
     HeightBand hb;
-    hb.count = last - first;
     hb.h_min_m = sorted_h[first];
     hb.h_max_m = sorted_h[last - 1];
     double sum = 0.0;
-    for (std::size_t m = first; m < last; ++m) sum += sorted_h[m];
-    hb.h_mean_m = sum / static_cast<double>(hb.count);
+    double samples = 0.0;
+    for (std::size_t m = first; m < last; ++m) {
+      sum += sorted_samples[m] * sorted_h[m];
+      samples += sorted_samples[m];
+    }
+    hb.count = static_cast<std::size_t>(std::llround(samples));
+    hb.h_mean_m = sum / samples;
     if (hb.count >= options.min_band_samples) {
       hb.k_T_N_per_rpm2 = fitOne(0, order, first, last, nullptr);
       hb.k_TX_N_per_rpm2 = fitOne(1, order, first, last, nullptr);

@@ -6,6 +6,7 @@
 #include <vector>
 #include <utility>
 
+#include "fit_support.hpp"
 #include "geaware/io/csv_reader.hpp"
 
 namespace geaware::ident {
@@ -31,6 +32,7 @@ CsvColumn velocity(const std::string& n) { return {n, -200.0, 200.0}; }  // [m/s
 CsvColumn quaternion(const std::string& n) { return {n, -1.000001, 1.000001}; }
 CsvColumn acceleration(const std::string& n) { return {n, -1000.0, 1000.0}; }  // [m/s²]
 CsvColumn voltage(const std::string& n) { return {n, 0.0, 1000.0}; }  // [V]
+CsvColumn count(const std::string& n) { return {n, 1.0, 1e12}; }      // samples behind a mean
 
 /// The columns of one log: asked for in order by kind, then read and handed out in that order.
 class LogColumns {
@@ -77,9 +79,19 @@ PlatformLog readPlatformLog(const std::filesystem::path& file, const PlatformCol
   PlatformLog log;
   LogColumns k;
   k.add(time, c.t).add(height, c.h).add(tilt, c.tilt).add(speed, c.n).add(force, c.f).add(torque, c.tau);
+  if (!c.fz_std.empty()) k.add(force, c.fz_std);
+  if (!c.count.empty()) k.add(count, c.count);
   k.read(file, log, definitions);
   k.take(log.t_s); k.take(log.h_m); k.take(log.tilt_deg);
   k.take(log.n_rpm); k.take(log.f_N); k.take(log.tau_Nm);
+  if (!c.fz_std.empty()) k.take(log.fz_std_N);
+  if (!c.count.empty()) k.take(log.count);
+  for (std::size_t i = 0; i < log.fz_std_N.size(); ++i) {
+    if (log.fz_std_N[i] > 0.0) continue;
+    throw IdentError(log.source + ":" + std::to_string(log.first_data_line + i) + ": column '" + c.fz_std +
+                     "': expected a standard deviation > 0 N, got " + detail::num(log.fz_std_N[i]) +
+                     " (a row's weight is count/std²)");
+  }
   return log;
 }
 

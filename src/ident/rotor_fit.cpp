@@ -149,7 +149,10 @@ RotorFit fitRotorStand(const RotorStandLog& log, const RotorFitOptions& options)
     fit.voltage_exponent = tv.fit.estimate(3);
     fit.reference_voltage_V = tv.reference_voltage_V;
     fit.throttle = tv.fit.stats;
-    if (!tv.fit.message.empty()) fit.warnings.push_back("voltage fit: " + tv.fit.message);
+    if (!tv.fit.message.empty()) {
+      fit.blocking.push_back("voltage fit: " + tv.fit.message + " (the optimum lies outside the range searched: the "
+                             "value is the bound, not a fit)");
+    }
     return fit;
   }
   const auto th = fitLinear(

@@ -129,7 +129,8 @@ std::vector<std::string> screenPlatform(PlatformLog& log, const PlatformColumns&
   };
   const std::size_t dropped =
       keepRows(n, running, log.t_s, log.h_m, log.tilt_deg, log.n_rpm[0], log.n_rpm[1], log.n_rpm[2],
-               log.n_rpm[3], log.f_N[0], log.f_N[1], log.f_N[2], log.tau_Nm[0], log.tau_Nm[1], log.tau_Nm[2]);
+               log.n_rpm[3], log.f_N[0], log.f_N[1], log.f_N[2], log.tau_Nm[0], log.tau_Nm[1], log.tau_Nm[2],
+               log.fz_std_N, log.count);
   std::vector<std::string> notes;
   if (dropped > 0) notes.push_back(droppedNote(dropped, n, "with a rotor at 0 rpm"));
   return notes;

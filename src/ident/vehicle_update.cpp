@@ -36,6 +36,7 @@ void addLeveling(io::VehicleUpdate& u, const LevelingFit& f) {
 
 void addDrag(io::VehicleUpdate& u, const DragFit& f) {
   const model::DragTableParams t = dragTable(f);
+  if (t.heights_m.empty()) return;  // every band fitted negative: nothing to write
   u.setList("drag.heights_m", t.heights_m);
   u.setList("drag.d_x_N_per_mps", t.d_x_N_per_mps);
   u.setList("drag.d_y_N_per_mps", t.d_y_N_per_mps);

@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "geaware/model/ground_effect.hpp"
 #include "geaware/model/mixer.hpp"
 #include "geaware/sim/rigs.hpp"
 #include "synthetic.hpp"
@@ -263,9 +264,60 @@ TEST(Identify, ADragBandFittedNegativeBlocksTheOut) {
   ASSERT_EQ(r.fits.drag->bands.size(), 4U);
   EXPECT_EQ(r.blocking.size(), 8U);  // d_x and d_y of each band
   EXPECT_NE(r.blocking[0].find("fitted negative"), std::string::npos) << r.blocking[0];
+  // Never written, not even as 0 (--accept-warnings): the bands are left out of the table.
+  EXPECT_TRUE(ident::dragTable(*r.fits.drag).heights_m.empty());
+  EXPECT_FALSE(updates(r, "drag.d_x_N_per_mps"));
   // The right sign blocks nothing.
   EXPECT_TRUE(ident::identifyFlight(ident_test::dragFlights(2), p, o).blocking.empty());
   EXPECT_TRUE(ident::identifyHover(ident_test::hoverDescent(7), p, {}).blocking.empty());
+}
+
+TEST(Identify, AParameterAtItsBoundBlocksTheOut) {
+  // Issue 11: parameters stuck at a bound were reported only as "poorly constrained". An F_G
+  // that rises faster than the closed form allows, g2/(h² − 0.002 m²), puts g1's optimum below
+  // its bound 1e-9 m²: blocked.
+  const auto& p = geaware_test::paperParams();
+  ident_test::PlatformSpec spec;
+  spec.tilted_samples = 0;
+  ident::PlatformLog log = ident_test::syntheticPlatform(spec, 3);
+  const geaware::model::GroundEffectModel ge(p);
+  for (std::size_t i = 0; i < log.size(); ++i) {
+    const double h = log.h_m[i];
+    log.f_N[2][i] *= (1.0 + p.additional_thrust.g2_m2 / (h * h - 0.002)) / (1.0 + ge.thrustRatio(h));
+  }
+  const auto r = ident::identifyPlatform(log, p, {});
+  ASSERT_FALSE(r.blocking.empty());
+  EXPECT_NE(r.blocking[0].find("g1 = 1e-09 ended at its bound (allowed [1e-09, 100])"), std::string::npos)
+      << r.blocking[0];
+  // The paper's curve is inside its bounds: nothing blocks.
+  EXPECT_TRUE(ident::identifyPlatform(ident_test::syntheticPlatform(spec, 3), p, {}).blocking.empty());
+}
+
+TEST(Identify, EveryFitCarriesItsConditionNumber) {
+  const auto& p = geaware_test::paperParams();
+  ident_test::PlatformSpec spec;
+  spec.tilted_samples = 0;
+  const auto r = ident::identifyPlatform(ident_test::syntheticPlatform(spec, 3), p, {});
+  ASSERT_FALSE(r.residuals.empty());
+  for (const auto& f : r.residuals) {
+    if (f.stats.count == 0) continue;  // a coefficient without excitation: not fitted
+    EXPECT_GE(f.stats.condition_number, 1.0) << f.name;
+    EXPECT_LT(f.stats.condition_number, ident::kIllConditioned) << f.name;
+  }
+  EXPECT_NE(ident::resultText(r).find("condition number"), std::string::npos);
+  for (const auto& w : r.warnings) EXPECT_EQ(w.find("condition number"), std::string::npos) << w;
+  // One rpm and heights only out of ground effect (1.5, 2 m): k_T and the F_G curve trade off.
+  spec.level_heights_m = {1.5, 2.0};
+  spec.mixing_rpm = 0.0;
+  try {
+    const auto flat = ident::identifyPlatform(ident_test::syntheticPlatform(spec, 3), p, {});
+    const bool warned = std::any_of(flat.warnings.begin(), flat.warnings.end(), [](const std::string& w) {
+      return w.find("condition number") != std::string::npos;
+    });
+    EXPECT_TRUE(warned || !flat.blocking.empty());
+  } catch (const ident::IdentError& e) {
+    EXPECT_NE(std::string(e.what()).find("not identifiable"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Identify, FlightRecoversTheDragTablePerBand) {

@@ -86,7 +86,8 @@ struct DragFit {
                               const DragFitOptions& options = {});
 
 /// The drag table of a vehicle file from the fitted bands (heights: the bands' mean heights,
-/// exactly the logged height for a band flown at one height).
+/// exactly the logged height for a band flown at one height). A band with a coefficient fitted
+/// negative is left out (never written as 0); no band left: an empty table.
 [[nodiscard]] model::DragTableParams dragTable(const DragFit& fit);
 
 }  // namespace geaware::ident

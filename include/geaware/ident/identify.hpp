@@ -38,6 +38,9 @@ struct IdentifyOptions {
   /// rotor, with a voltage column: the voltage the fitted throttle curve holds at; ≤ 0: the
   /// median voltage of the log [V].
   double reference_voltage_V = 0.0;
+  /// platform: k_T alone from every level sample as one height band, F_G taken as 0 and not
+  /// fitted (a stand at one height or out of ground effect; `--k-T-only`).
+  bool k_T_only = false;
 };
 
 /// The loss by name: "huber" (default scale), "cauchy" (scale 2.385) or "none"; throws

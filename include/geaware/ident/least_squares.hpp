@@ -50,7 +50,19 @@ struct FitStats {
   double residual_rms = kNaN;   ///< RMS of the (weighted) residuals of the samples kept [output unit]
   std::size_t count = 0;        ///< samples kept in the final fit
   std::size_t outliers = 0;     ///< samples dropped as outliers
+  /// Condition number of the design (the Jacobian at the optimum, columns scaled to unit
+  /// norm): √(λmax/λmin) of the scaled normal matrix. 1 for orthogonal regressors; large when
+  /// the parameters trade off against each other (kIllConditioned) [-].
+  double condition_number = kNaN;
 };
+
+/// Above this condition number a fit is flagged as ill-conditioned. With unit-norm columns the
+/// standard error of the worst-determined combination of parameters is κ times what orthogonal
+/// regressors with the same data would give; κ = 1e4 (variance inflation 1e8) is far beyond the
+/// ~1e2–1e3 of the closed-form curves g2/(h² + g1) fitted over a full height sweep, and a decade
+/// below the 1e6 (eigenvalue ratio 1e-12) where the fits refuse as "not identifiable". The
+/// estimates of such a fit are determined only as a combination: report it, do not trust each.
+inline constexpr double kIllConditioned = 1e4;
 
 enum class RobustLoss { kNone, kHuber, kCauchy };
 
@@ -61,6 +73,14 @@ struct RobustOptions {
   double loss_scale = 1.345;
   /// Residuals beyond this many robust standard deviations are outliers; ≤ 0 keeps all [-].
   double outlier_sigmas = 4.0;
+  /// The weights are inverse variances 1/σ² of known measurement errors (rows of a table given
+  /// as mean ± std with a count: σ = std/√count), not relative weights: the covariance is
+  /// (JᵀWJ)⁻¹, multiplied by the reduced χ² = Σw·r²/(n − p) only where that exceeds 1 (means
+  /// that scatter more than their stds say: the model misses them), and n = p samples suffice.
+  /// The robust loss and the outlier test are not applied: each row is already a mean of many
+  /// samples, and a handful of rows gives no robust scale (a loss fitted to 10 rows dropped the
+  /// lowest, most informative one). Nonlinear fits take the residuals already divided by σ.
+  bool known_variances = false;
 };
 
 /// Result of a linear or nonlinear fit.
@@ -70,6 +90,9 @@ struct LeastSquaresFit {
   FitStats stats;
   bool ok = false;              ///< false: not enough samples or a singular problem (see message)
   std::string message;
+  /// Nonlinear fits: the parameters that ended at one of their bounds (within 1e-6 of the
+  /// bound's scale): the optimum lies outside the range allowed, the value is not a fit.
+  std::vector<int> at_bound;
 
   [[nodiscard]] Estimate estimate(int i) const {
     return {x(i), std::sqrt(covariance(i, i))};
@@ -97,7 +120,21 @@ struct NonlinearProblem {
   std::vector<double> scales;
   std::vector<double> lower;  ///< bounds, −inf/+inf for none (empty: unbounded)
   std::vector<double> upper;
+  /// Smallest robust scale of the residuals [output unit]; 0: none. Exact data (noise-free, or
+  /// rows copied to their counts) leave residuals at rounding noise, and a robust scale of that
+  /// size would make every sample an outlier: set it to kRelativeScaleFloor times the size of
+  /// the outputs (scaleFloor). Linear fits set theirs from y themselves.
+  double scale_floor = 0.0;
 };
+
+/// The robust scale's floor relative to the RMS of the (weighted) outputs [-]. Rounding leaves
+/// residuals of ~1e-16 of the outputs times the problem's condition; any measurement scatters
+/// far more than 1e-9 of its value (a load cell resolves ~1e-5 of its range at best). Below the
+/// floor the data are taken as exact: no sample is down-weighted or dropped.
+inline constexpr double kRelativeScaleFloor = 1e-6;
+
+/// kRelativeScaleFloor times the RMS of `y` (0 for no samples).
+[[nodiscard]] double scaleFloor(const std::vector<double>& y);
 
 /// Most non-zero regressors in one row of a sparse linear problem, and most parameters.
 inline constexpr int kMaxRowEntries = 8;

@@ -54,6 +54,8 @@ struct LevelingFit {
   double tilt_min_deg = kNaN;       ///< |tilt| range of the samples used [deg]
   double tilt_max_deg = kNaN;
   std::vector<std::string> warnings;
+  /// Problems that block `--out` unless accepted: a parameter that ended at its bound.
+  std::vector<std::string> blocking;
 };
 
 /// y_Wᵀτ_G = s·M_G(h)·T·sin δ with M_G a table (table_fit.hpp), linear in the knot values.

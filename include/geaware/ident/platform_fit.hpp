@@ -50,6 +50,8 @@ struct AdditionalThrustFit {
   double h_min_m = kNaN;                                 ///< height range of the samples [m]
   double h_max_m = kNaN;
   std::vector<std::string> warnings;
+  /// Problems that block `--out` unless accepted: a parameter that ended at its bound.
+  std::vector<std::string> blocking;
 };
 
 /// f̃_z = k_T·Σn²·(1 + F_G(h)) with F_G a table (table_fit.hpp): k_T and the knot values.
@@ -68,7 +70,7 @@ struct HeightBand {
   double h_min_m = kNaN;
   double h_max_m = kNaN;
   double h_mean_m = kNaN;
-  std::size_t count = 0;
+  std::size_t count = 0;  ///< samples (a row that is a mean counts as its samples)
   std::optional<Estimate> k_T_N_per_rpm2;
   std::optional<Estimate> k_TX_N_per_rpm2;
   std::optional<Estimate> k_TY_N_per_rpm2;
@@ -93,6 +95,19 @@ struct MixingFit {
 /// k_T·F_G(h_j)). Throws IdentError, e.g. when no level sample lies above the top knot.
 [[nodiscard]] AdditionalThrustTableFit fitAdditionalThrustTable(
     const PlatformLog& log, const PlatformFitOptions& options = {});
+
+/// k_T alone: f̃_z = k_T·Σn² on every level sample, F_G taken as 0 (one height band).
+struct ThrustAloneFit {
+  Estimate k_T_N_per_rpm2;
+  FitStats stats;          ///< residuals in N
+  double h_min_m = kNaN;   ///< height range of the level samples [m]
+  double h_max_m = kNaN;
+  std::vector<std::string> warnings;
+};
+
+/// For a stand at one height or out of ground effect, where g1 and g2 cannot be fitted and the
+/// user asks for k_T alone (`identify platform --k-T-only`). Throws IdentError.
+[[nodiscard]] ThrustAloneFit fitThrustAlone(const PlatformLog& log, const PlatformFitOptions& options = {});
 
 /// k_TX, k_TY, k_I overall and per height band; b is the diagonal rotor distance [m].
 /// Throws IdentError when the log has too few level samples.

@@ -33,6 +33,13 @@ struct PlatformColumns {
   std::array<std::string, 4> n = {"n1_rpm", "n2_rpm", "n3_rpm", "n4_rpm"};
   std::array<std::string, 3> f = {"fx_N", "fy_N", "fz_N"};
   std::array<std::string, 3> tau = {"tx_Nm", "ty_Nm", "tz_Nm"};
+  /// Rows that are means (a table published as mean ± std per height): the standard deviation
+  /// of fz behind each mean [N] and the count of samples behind it. Empty: not read (every row
+  /// one sample). With fz_std the level-board thrust fits weight each row by 1/σ²,
+  /// σ = std/√count, as known variances; with count alone every fit weights rows by their count.
+  /// `identify platform --std-column NAME --count-column NAME`.
+  std::string fz_std;
+  std::string count;
 };
 
 struct PlatformLog {
@@ -44,10 +51,21 @@ struct PlatformLog {
   std::array<std::vector<double>, 4> n_rpm;
   std::array<std::vector<double>, 3> f_N;     ///< body-frame force [N]
   std::array<std::vector<double>, 3> tau_Nm;  ///< body-frame torque [N·m]
+  std::vector<double> fz_std_N;  ///< std of f_z behind each row's mean (> 0); empty: not given [N]
+  std::vector<double> count;     ///< samples behind each row (≥ 1); empty: one per row
 
   [[nodiscard]] std::size_t size() const noexcept { return t_s.size(); }
+  /// Samples behind row i (1 without a count column).
+  [[nodiscard]] double samples(std::size_t i) const noexcept { return count.empty() ? 1.0 : count[i]; }
+  /// The weight of row i's f_z: 1/σ² with σ = std/√count when the stds are given (known
+  /// variances), else the row's count.
+  [[nodiscard]] double fzWeight(std::size_t i) const noexcept {
+    return fz_std_N.empty() ? samples(i) : samples(i) / (fz_std_N[i] * fz_std_N[i]);
+  }
+  [[nodiscard]] bool fzVariancesKnown() const noexcept { return !fz_std_N.empty(); }
 };
 
+/// Throws IdentError naming the file and line when a std is not > 0 or a count is below 1.
 [[nodiscard]] PlatformLog readPlatformLog(const std::filesystem::path& file,
                                           const PlatformColumns& columns = {},
                                           const ColumnDefinitions& definitions = {});

@@ -48,6 +48,8 @@ struct RotorFit {
   std::optional<double> reference_voltage_V;
   std::optional<Estimate> voltage_exponent;
   std::vector<std::string> warnings;        ///< problems that did not stop the fit
+  /// Problems that block `--out` unless accepted: the voltage exponent at a bound of [0, 4].
+  std::vector<std::string> blocking;
 };
 
 /// Fits the stand log. Throws IdentError when k_T, k_I or the throttle curve cannot be fitted.
