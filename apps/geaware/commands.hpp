@@ -62,6 +62,9 @@ Runner addIdentifyCommand(CLI::App& app);
 /// `geaware logs inspect LOG`: topics, rates, gaps and channel health of a flight log
 /// (io/log_inspect.hpp). docs/identification.md.
 Runner addLogsCommand(CLI::App& app);
+/// `geaware train-residual LOGS… --out weights.yaml`: the Neural-Lander baseline trained on flight
+/// logs (experiments/neural_baseline.hpp). docs/neural-lander.md.
+Runner addTrainCommand(CLI::App& app);
 /// `geaware rig {platform,rotor,calibrate}`: the virtual test rigs on the truth simulator and the
 /// calibration of the truth against the paper's measurements. docs/sim-aerodynamics.md.
 Runner addRigCommand(CLI::App& app);

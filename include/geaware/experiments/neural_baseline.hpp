@@ -26,6 +26,7 @@
 #include "geaware/control/controller_params.hpp"
 #include "geaware/experiments/flight.hpp"
 #include "geaware/experiments/progress.hpp"
+#include "geaware/ident/rig_logs.hpp"
 #include "geaware/neural/residual_network.hpp"
 #include "geaware/neural/trainer.hpp"
 
@@ -81,5 +82,22 @@ struct NeuralBaseline {
                                                    const NeuralSettings& s,
                                                    const std::filesystem::path& cache_dir, int jobs,
                                                    Progress* progress = nullptr);
+
+// ------------------------------------------------------------------ training on real logs
+
+/// Training rows from a flight log (ident/rig_logs.hpp: height, world velocity, attitude,
+/// external acceleration and rotor speeds, as `identify flight` reads it from a CSV or through
+/// a log map): features (h, v_W, q_WB, n) and the label m·a_ext − f_D∞(R_WB, v_W) [N], with the
+/// mass and the high-altitude drag of `vehicle` (the controller's, which compensates f_D∞
+/// itself) — the rows prepareNeuralBaseline collects in the simulator, from a log. m·a_ext is
+/// m·R·f_imu − k_T·Σn²·z_B, the force the nominal model leaves unexplained. Rows with a
+/// non-finite value are skipped. Returns the rows added. Throws std::invalid_argument naming the
+/// log when it lacks velocity, attitude or the horizontal external acceleration (a hover log).
+std::size_t addLogRows(neural::TrainingSet& set, const ident::FlightLog& log,
+                       const model::VehicleParams& vehicle);
+
+/// Mean squared error per force component of the labels themselves (no network: what the
+/// nominal model alone leaves) [N²]; NaN for an empty set.
+[[nodiscard]] double labelMeanSquare(const neural::TrainingSet& set);
 
 }  // namespace geaware::experiments
