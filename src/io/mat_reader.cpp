@@ -23,6 +23,7 @@
 
 #include "geaware/io/input_file.hpp"
 #include "geaware/io/log_channels.hpp"
+#include "mat_layout.hpp"
 
 namespace geaware::io {
 namespace {
@@ -124,8 +125,8 @@ bool isTimeName(std::string n) {
 
 class MatParser {
  public:
-  MatParser(std::string source, const LogReadOptions& options)
-      : source_(std::move(source)), options_(options) {
+  MatParser(std::string source, const LogReadOptions& options, std::uintmax_t max_numbers)
+      : source_(std::move(source)), options_(options), max_numbers_(max_numbers) {
     log_.source = source_;
     log_.format = "mat";
   }
@@ -137,10 +138,11 @@ class MatParser {
       VarPtr info(Mat_VarReadNextInfo(mat));
       if (!info) break;
       elements += count(info.get(), 0);
-      if (elements > options_.max_bytes) {
-        fail("variable '" + name(info.get()) + "': the variables hold more than " +
-             std::to_string(options_.max_bytes) +
-             " numbers (the most a log may hold); refused before reading");
+      if (elements > max_numbers_) {
+        fail("variable '" + name(info.get()) + "': the variables claim more than " +
+             std::to_string(max_numbers_) +
+             " numbers (more than the file's bytes can hold, or than 1 GiB of doubles); refused "
+             "before reading");
       }
       names_.emplace_back(name(info.get()));
     }
@@ -170,12 +172,13 @@ class MatParser {
     if (depth > kMaxDepth) return 0;
     std::uint64_t n = 1;
     for (int k = 0; k < v->rank && v->dims != nullptr; ++k) {
-      if (v->dims[k] != 0 && n > options_.max_bytes / v->dims[k]) {
+      if (v->dims[k] != 0 && n > max_numbers_ / v->dims[k]) {
         fail("variable '" + name(v) + "': dimensions too large (more numbers than a log may hold)");
       }
       n *= v->dims[k];
     }
     if (v->class_type == MAT_C_STRUCT && n == 1) {
+      if (v->data == nullptr) return 0;  // no fields read (libmatio then has no field array)
       std::uint64_t sum = 0;
       const unsigned fields = Mat_VarGetNumberOfFields(const_cast<matvar_t*>(v));
       for (unsigned f = 0; f < fields; ++f) {
@@ -199,6 +202,7 @@ class MatParser {
       for (int k = 0; k < v->rank; ++k) n *= v->dims[k];
       if (n != 1) return skip(path, "a struct array");
       if (depth >= kMaxDepth) return skip(path, "nested deeper than 8");
+      if (v->data == nullptr) return skip(path, "a struct without fields");
       const unsigned fields = Mat_VarGetNumberOfFields(v);
       char* const* names = Mat_VarGetStructFieldnames(v);
       for (unsigned f = 0; f < fields; ++f) {
@@ -293,54 +297,12 @@ class MatParser {
 
   std::string source_;
   const LogReadOptions& options_;
+  std::uintmax_t max_numbers_;
   LogData log_;
   std::vector<std::string> names_;
   std::vector<std::string> skipped_;
   std::size_t skipped_count_ = 0;
 };
-
-// A v5/v7 file's top-level data elements, walked before libmatio reads it: libmatio reads a cut
-// file's last struct with the fields it still finds and says nothing. Each element is a tag
-// (uint32 type, uint32 bytes; a small element packs both in 8 bytes) and its bytes, padded to 8
-// (compressed elements are not padded). v7.3 files are HDF5, which checks itself.
-void checkV5Layout(const std::filesystem::path& file, std::uintmax_t size) {
-  std::ifstream in(file, std::ios::binary);
-  char header[128] = {};
-  in.read(header, sizeof header);
-  if (!in || std::string_view(header, 10) == "MATLAB 7.3") return;
-  const bool swap = header[126] == 'M' && header[127] == 'I';
-  const auto u32 = [swap](const unsigned char* p) {
-    const std::uint32_t v =
-        static_cast<std::uint32_t>(p[0]) | static_cast<std::uint32_t>(p[1]) << 8 |
-        static_cast<std::uint32_t>(p[2]) << 16 | static_cast<std::uint32_t>(p[3]) << 24;
-    return swap ? __builtin_bswap32(v) : v;
-  };
-  std::uintmax_t at = 128;
-  while (at < size) {
-    unsigned char tag[8];
-    in.seekg(static_cast<std::streamoff>(at));
-    in.read(reinterpret_cast<char*>(tag), 8);
-    if (!in || size - at < 8) {
-      throw LogError(file.string(), at, "the .mat file ends inside a variable's tag (a cut file)");
-    }
-    const std::uint32_t type = u32(tag), bytes = u32(tag + 4);
-    std::uintmax_t next = at + 8;
-    if ((type >> 16) == 0) {
-      if (type == 0 || type > 18) {
-        throw LogError(file.string(), at,
-                       "not a .mat data element (type " + std::to_string(type) + ")");
-      }
-      next += type == 15 ? bytes : (static_cast<std::uintmax_t>(bytes) + 7) / 8 * 8;
-    }
-    if (next > size) {
-      throw LogError(file.string(), at,
-                     "a variable of " + std::to_string(next - at) +
-                         " bytes, the file ends at byte " + std::to_string(size) +
-                         ": a cut or damaged .mat file");
-    }
-    at = next;
-  }
-}
 
 }  // namespace
 
@@ -370,7 +332,7 @@ LogData readMat(const std::filesystem::path& file, const LogReadOptions& options
   }();
   (void)logging;
   g_matio_message.clear();
-  checkV5Layout(file, bytes);
+  const std::uintmax_t walked = detail::checkMatLayout(file, bytes, options.max_bytes);
   MatPtr mat(Mat_Open(source.c_str(), MAT_ACC_RDONLY));
   if (!mat) {
     std::string head(128, '\0');
@@ -384,7 +346,9 @@ LogData readMat(const std::filesystem::path& file, const LogReadOptions& options
                         : "not a MATLAB .mat file libmatio can open (v5, v7 or v7.3 expected)") +
             MatParser::why());
   }
-  MatParser parser(source, options);
+  MatParser parser(
+      source, options,
+      walked > 0 ? std::min<std::uintmax_t>(walked, options.max_bytes / 8) : options.max_bytes / 8);
   parser.checkSizes(mat.get());
   return parser.run(mat.get());
 }

@@ -142,16 +142,19 @@ TEST(MatReader, SizesAreCheckedBeforeTheDataIsRead) {
       MAT_COMPRESSION_ZLIB);
   Mat_Close(mat);
   geaware::io::LogReadOptions o;
-  o.max_bytes = 100000;
+  o.max_bytes = 400000;  // 50,000 numbers
   ASSERT_LT(std::filesystem::file_size(f), o.max_bytes);
   try {
     (void)geaware::io::readMat(f, o);
     FAIL() << "no error";
   } catch (const LogError& e) {
+    // Its dimensions claim more numbers than the limit allows: refused while the file is walked,
+    // before libmatio reads (or allocates) anything.
     EXPECT_EQ(std::string(e.what()),
               f.string() +
-                  ": variable 'big': dimensions too large (more numbers than a log "
-                  "may hold)");
+                  ": byte 128: a variable whose dimensions claim more than 50000 "
+                  "elements (doubles in the bytes a log may have): refused before "
+                  "reading");
   }
 }
 
@@ -184,6 +187,26 @@ TEST(MatReader, ErrorsNameTheFile) {
       EXPECT_EQ(e.file(), cut.string());
       EXPECT_TRUE(e.hasOffset()) << e.what();
     }
+  }
+  // An inner element whose size runs past its variable (libmatio would allocate what it says):
+  // the first variable's array-flags element, at byte 136, claims 2^31 − 16 bytes.
+  const auto huge = dir() / "huge.mat";
+  std::filesystem::copy_file(whole, huge, std::filesystem::copy_options::overwrite_existing);
+  {
+    std::fstream io(huge, std::ios::binary | std::ios::in | std::ios::out);
+    const std::uint32_t bytes = 0x7FFFFFF0U;
+    io.seekp(140);
+    io.write(reinterpret_cast<const char*>(&bytes), 4);
+  }
+  try {
+    (void)geaware::io::readMat(huge);
+    ADD_FAILURE() << "no error";
+  } catch (const LogError& e) {
+    EXPECT_NE(std::string(e.what()).find(huge.string() +
+                                         ": byte 128: an element of 2147483632 bytes inside this "
+                                         "variable runs past its end"),
+              std::string::npos)
+        << e.what();
   }
   EXPECT_THROW((void)geaware::io::readMat(dir() / "missing.mat"), LogError);
 }
