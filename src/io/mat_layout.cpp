@@ -184,6 +184,8 @@ class V5Layout {
     if (depth > 16) fail(at, "variables nested deeper than 16");
     std::uintmax_t pos = 0;
     bool sparse = false;
+    std::uint32_t cls = 0, name_length = 0;
+    std::uintmax_t elements = 1;
     for (int element = 0; pos < length; ++element) {
       unsigned char tag[8];
       if (length - pos < 8 || !src.read(tag, 8)) {
@@ -193,14 +195,18 @@ class V5Layout {
       pos += 8;
       const std::uint32_t type = u32(tag), bytes = u32(tag + 4);
       if ((type >> 16) != 0) {  // a small element: its data was in the 8 bytes read
-        if (element == 1 && !sparse)
-          checkDims(tag + 4, std::min<std::uint32_t>(type >> 16, 4) / 4, length, at);
+        if (element == 1 && !sparse) {
+          elements = checkDims(tag + 4, std::min<std::uint32_t>(type >> 16, 4) / 4, length, at);
+        }
+        if (element == 3 && (cls == 2 || cls == 3))
+          name_length = u32(tag + 4);  // a struct's field-name length
         continue;
       }
       if (element == 0 && type == 6 && bytes == 8) {  // the array flags: the class in the low byte
         unsigned char flags[8];
         if (!src.read(flags, 8)) fail(at, "the variable ends inside its flags");
-        sparse = (u32(flags) & 0xffU) == 5;  // mxSPARSE_CLASS: dims are not its storage
+        cls = u32(flags) & 0xffU;
+        sparse = cls == 5;  // mxSPARSE_CLASS: dims are not its storage
         pos += 8;
         continue;
       }
@@ -209,12 +215,22 @@ class V5Layout {
         if (bytes > 4 * 32) fail(at, "a variable of more than 32 dimensions");
         unsigned char dims[4 * 32];
         if (!src.read(dims, bytes)) fail(at, "the variable ends inside its dimensions");
-        checkDims(dims, bytes / 4, length, at);
+        elements = checkDims(dims, bytes / 4, length, at);
         const std::uintmax_t rest =
             std::min((static_cast<std::uintmax_t>(bytes) + 7) / 8 * 8, length - pos) - bytes;
         if (!src.skip(rest)) fail(at, "the variable ends inside its dimensions");
         pos += bytes + rest;
         continue;
+      }
+      if (element == 4 &&
+          (cls == 2 || cls == 3)) {  // a struct's field names: fields × elements matrices follow
+        if (name_length == 0) fail(at, "a struct whose field names have length 0");
+        const std::uintmax_t fields = bytes / name_length;
+        if (fields != 0 && elements > length / 8 / fields) {
+          fail(at, "a struct of " + std::to_string(elements) + " elements × " +
+                       std::to_string(fields) + " fields in " + std::to_string(length) +
+                       " bytes: a damaged .mat file");
+        }
       }
       const std::uintmax_t padded = (static_cast<std::uintmax_t>(bytes) + 7) / 8 * 8;
       if (bytes > length - pos) {
@@ -238,8 +254,8 @@ class V5Layout {
   // The product of `n` int32 dimensions: at most limit_ / 8 elements, and at most the matrix's
   // `length` in bytes (every element stores at least one byte; a struct array's or cell's
   // elements are allocated by the product before any is read).
-  void checkDims(const unsigned char* p, std::uint32_t n, std::uintmax_t length,
-                 std::uintmax_t at) const {
+  std::uintmax_t checkDims(const unsigned char* p, std::uint32_t n, std::uintmax_t length,
+                           std::uintmax_t at) const {
     std::uintmax_t product = 1;
     for (std::uint32_t k = 0; k < n; ++k) {
       const std::uint32_t d = u32(p + 4 * k);
@@ -253,6 +269,7 @@ class V5Layout {
       fail(at, "a variable whose dimensions claim " + std::to_string(product) + " elements in " +
                    std::to_string(length) + " bytes: a damaged .mat file");
     }
+    return product;
   }
 
   std::filesystem::path file_;
