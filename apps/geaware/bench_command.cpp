@@ -47,6 +47,7 @@ struct BenchOptions {
   std::string json;
   std::string report;
   std::string cache;  ///< empty: the per-user default (defaultCacheDir)
+  std::string neural_weights;  ///< the Neural-Lander baseline's weights (empty: trained here)
   bool no_cache = false;
   bool truth_mismatch = false;
   bool no_turbulence = false;
@@ -92,6 +93,7 @@ std::string checkFiles(const BenchOptions& o) {
   files.input("--vehicle", o.vehicle);
   files.input("--truth", truthInputFile(o.truth));
   files.input("--controller-params", o.controller_params);
+  files.input("--neural-weights", o.neural_weights);
   files.output("--json", o.json);
   files.directory("--report", o.report);
   if (!o.no_cache && !o.cache.empty()) files.directory("--cache", o.cache);
@@ -225,6 +227,7 @@ int runBench(const BenchOptions& o) {
     }
   }
   c.cache_dir = checkFiles(o);
+  c.neural_weights = o.neural_weights;
   c.turbulence = !o.no_turbulence;
   c.calibration.tables = o.ground_effect == "table";
   c.collect_series = !o.report.empty();
@@ -313,6 +316,10 @@ Runner addBenchCommand(CLI::App& app) {
                   "directory of the cached Neural-Lander weights (default: $XDG_CACHE_HOME/geaware, "
                   "else ~/.cache/geaware; without it, or when it cannot be written, a warning and no cache)");
   cmd->add_flag("--no-cache", o->no_cache, "always retrain the Neural-Lander network, save nothing");
+  cmd->add_option("--neural-weights", o->neural_weights,
+                  "fly this weight file as the Neural-Lander baseline (e.g. from `geaware train-residual` on your "
+                  "logs) instead of training one (--suite table)")
+      ->check(CLI::ExistingFile);
   // Moved into the truth file (truth.per_flight_variation): kept, hidden, to say where.
   cmd->add_flag("--truth-mismatch", o->truth_mismatch)->group("");
   cmd->add_flag("--no-turbulence", o->no_turbulence, "switch off the truth's near-ground turbulence");
@@ -337,6 +344,10 @@ Runner addBenchCommand(CLI::App& app) {
     }
     if (o->suite == "table" && (!o->cases.empty() || !o->controllers.empty())) {
       throw CLI::ValidationError("--cases", "--cases and --controllers need --suite robustness or faults");
+    }
+    if (o->suite != "table" && !o->neural_weights.empty()) {
+      throw CLI::ValidationError("--neural-weights", "applies to --suite table (the robustness suite trains its "
+                                                     "own network per world; the fault suite flies none)");
     }
     if (o->suite == "faults" && (!o->report.empty() || !o->cache.empty() || o->no_cache)) {
       throw CLI::ValidationError("--suite", "--report and --cache apply to --suite table and robustness "

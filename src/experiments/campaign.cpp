@@ -19,6 +19,7 @@
 #include "geaware/experiments/world_setup.hpp"
 #include "geaware/io/json.hpp"
 #include "geaware/io/truth_file.hpp"
+#include "geaware/neural/weights_file.hpp"
 #include "geaware/traj/hover_descent.hpp"
 #include "geaware/traj/lemniscate.hpp"
 
@@ -185,7 +186,17 @@ CampaignResult runCampaign(const CampaignOptions& o) {
     t0 = Clock::now();
     NeuralSettings neural = o.neural;
     neural.world_key = io::truthSectionYaml(world);
-    r.neural = prepareNeuralBaseline(base, neural, o.cache_dir, o.jobs, o.progress);
+    if (o.neural_weights.empty()) {
+      r.neural = prepareNeuralBaseline(base, neural, o.cache_dir, o.jobs, o.progress);
+    } else {
+      // The user's network (train-residual on real logs, or an earlier run): loaded, not trained.
+      NeuralBaseline nb;
+      nb.network = std::make_shared<neural::ResidualNetwork>(neural::loadWeights(o.neural_weights).weights);
+      nb.user_file = true;
+      nb.file = o.neural_weights;
+      nb.train_loss_N2 = nb.validation_loss_N2 = std::numeric_limits<double>::quiet_NaN();
+      r.neural = std::move(nb);
+    }
     r.neural_s = since(t0);
   }
 

@@ -77,7 +77,9 @@ std::string neuralText(const CampaignResult& r) {
   std::string s;
   if (r.neural) {
     const auto& n = *r.neural;
-    if (n.trained) {
+    if (n.user_file) {
+      s += fmt::format("\nNeural-Lander: the weight file {} (--neural-weights), not trained here\n", n.file.string());
+    } else if (n.trained) {
       s += fmt::format("\nNeural-Lander: trained on {} rows, validation MSE {:.4f} N² per component "
                        "({:.1f} s){}\n",
                        n.rows, n.validation_loss_N2, r.neural_s,
@@ -321,6 +323,7 @@ io::Json campaignJson(const CampaignResult& r) {
   if (r.neural) {
     const auto& n = *r.neural;
     j["neural"] = {{"trained", n.trained},
+                   {"user_file", n.user_file},
                    {"key_hash", n.key_hash},
                    {"file", n.file.string()},
                    {"rows", n.rows},

@@ -3,7 +3,7 @@
 // simulator (`geaware fly --out`, read back as `identify flight` reads them) → a weight file.
 // The network must explain part of the force the nominal model leaves on a flight it was not
 // trained on, the same seed must give the same file, the file must load through the weights
-// reader and fly the neural controller (`fly --neural-weights`).
+// reader and fly the neural controller (`fly --neural-weights`, `bench --neural-weights`).
 
 #include <array>
 #include <cstdio>
@@ -99,6 +99,16 @@ TEST(TrainResidual, WeightsFromLogsReduceTheResidualOfAFlightTheyWereNotTrainedO
   // The file flies the neural controller.
   EXPECT_EQ(geaware(words({flight, "--height 0.2 --seed 4 --controller neural:none --neural-weights", q("a.yaml")})).status,
             0);
+
+  // bench flies it as its Neural-Lander baseline (row 3) instead of training one, in the world
+  // it was trained in; the robustness suite (a network per world) refuses it.
+  const CommandRun bench = geaware(words({"bench --only 3 --seeds 1 --truth ideal --quiet --json - --neural-weights",
+                                          q("a.yaml")}));
+  ASSERT_EQ(bench.status, 0) << bench.out;
+  const auto table = nlohmann::json::parse(bench.out);
+  EXPECT_TRUE(table["neural"]["user_file"].get<bool>());
+  EXPECT_FALSE(table["neural"]["trained"].get<bool>());
+  EXPECT_EQ(geaware(words({"bench --suite robustness --neural-weights", q("a.yaml")})).status / 256, 2);
 
   // A hover log (no velocity, attitude or horizontal a_ext) is refused, and --out is not written.
   ident_test::writeText(dir / "hover.csv", "t_s,h_m,az_ext_mps2,n1_rpm,n2_rpm,n3_rpm,n4_rpm\n0,1,0,9000,9000,9000,9000\n"

@@ -56,6 +56,9 @@ struct CampaignOptions {
   bool hover = true;             ///< fly the hover experiment
   int jobs = 0;                  ///< flight threads; 0: the hardware's
   std::filesystem::path cache_dir;  ///< Neural-Lander cache; empty: no cache
+  /// A weight file (e.g. from `geaware train-residual`) flown as the Neural-Lander baseline
+  /// instead of training one here; empty: trained (or taken from the cache).
+  std::filesystem::path neural_weights;
   bool turbulence = true;           ///< false: no near-ground turbulence, whatever the world says
   /// Hover at the first point before every trajectory [s]: the runner starts the truth in its
   /// own hover there, and a controller with an imperfect model needs ≈ 2 s to settle; the

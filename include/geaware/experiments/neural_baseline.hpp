@@ -58,7 +58,8 @@ struct NeuralSettings {
 
 struct NeuralBaseline {
   std::shared_ptr<const neural::ResidualNetwork> network;
-  bool trained = false;          ///< false: loaded from the cache
+  bool trained = false;          ///< false: loaded from the cache or the user's file
+  bool user_file = false;        ///< the user's weight file (CampaignOptions::neural_weights)
   std::string key_hash;          ///< 16 hex digits
   std::filesystem::path file;    ///< the cached weight file (empty without a cache)
   std::size_t rows = 0;          ///< training rows collected (0 when loaded)
