@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "geaware/bridge/nodes.hpp"
+#include "geaware/bridge/px4_codec.hpp"
 #include "geaware/experiments/flight_summary.hpp"
 #include "geaware/experiments/scenario_file.hpp"
 #include "geaware/io/controller_params_file.hpp"
@@ -40,7 +41,7 @@ struct NetOptions {
   std::string px4_namespace;
   bool real_time = false;
   double thr_mdl_fac = 0.0;
-  std::vector<int> motor_map{1, 2, 3, 4};
+  std::vector<int> motor_map;  ///< empty: the vehicle file's rotor_layout
 };
 
 void addNetOptions(CLI::App* cmd, NetOptions& o) {
@@ -60,7 +61,8 @@ void addNetOptions(CLI::App* cmd, NetOptions& o) {
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--motor-map", o.motor_map,
                   "PX4 motor number (1..12) of geaware's rotors 1..4 (front right, rear left, front left, "
-                  "rear right); default 1 2 3 4: PX4's quadrotor x")
+                  "rear right) (default: the vehicle file's rotor_layout.rotorN.px4_motor; without it "
+                  "1 2 3 4, PX4's quadrotor x)")
       ->expected(4)
       ->check(CLI::Range(1, 12));
 }
@@ -75,7 +77,8 @@ bridge::DdsSettings ddsOf(const NetOptions& o) {
   return d;
 }
 
-bridge::MotorMap motorMapOf(const NetOptions& o) {
+bridge::MotorMap motorMapOf(const NetOptions& o, const model::VehicleParams& vehicle) {
+  if (o.motor_map.empty()) return bridge::motorMapOf(vehicle.rotor_layout);
   bridge::MotorMap m;
   for (std::size_t i = 0; i < 4; ++i) m.px4_index[i] = o.motor_map[i] - 1;
   if (!m.valid()) throw UsageError("--motor-map: each PX4 motor number at most once");
@@ -109,7 +112,7 @@ int runSitlCommand(const SitlCliOptions& o) {
   so.command_timeout_s = o.command_timeout_s;
   so.wait_bridge_s = o.wait_bridge_s;
   so.thr_mdl_fac = o.net.thr_mdl_fac;
-  so.motors = motorMapOf(o.net);
+  so.motors = motorMapOf(o.net, s.vehicle);
   installSignalHandlers();
   const bridge::SitlReport r =
       bridge::runSitl(s, so, g_stop, [](const std::string& l) { printNotice("sitl", l); });
@@ -147,7 +150,7 @@ int runBridgeCommand(const BridgeCliOptions& o) {
   bridge::BridgeOptions bo;
   bo.dds = ddsOf(o.net);
   bo.lockstep = !o.net.real_time;
-  bo.core.motors = motorMapOf(o.net);
+  bo.core.motors = motorMapOf(o.net, s.vehicle);
   bo.core.thr_mdl_fac = o.net.thr_mdl_fac;
   bo.core.max_height_age_s = o.max_height_age_s;
   bo.input_timeout_s = o.input_timeout_s;

@@ -119,10 +119,10 @@ BridgeReport runBridge(const experiments::FlightScenario& s, const BridgeOptions
   std::vector<double> latency_us;
   latency_us.reserve(o.max_latency_samples);
   const auto timeout = std::chrono::duration<double>(o.input_timeout_s);
-  const auto period = std::chrono::duration<double>(1.0 / s.controller.rate_hz);
   LoopState st;
   st.last_input = Clock::now();
-  auto next_tick = Clock::now();
+  const std::uint64_t period_us = toMicroseconds(1.0 / s.controller.rate_hz);
+  std::uint64_t next_tick_us = 0;
   Px4ActuatorMotors motors;
   Px4OffboardControlMode mode;
   notify(fmt::format("bridge on domain {}: waiting for {}", o.dds.domain_id,
@@ -139,10 +139,11 @@ BridgeReport runBridge(const experiments::FlightScenario& s, const BridgeOptions
     std::uint64_t tick_us[4];
     if (o.lockstep) {
       for (int i = 0; i < n_clock; ++i) tick_us[ticks++] = decodeClockUs(t.clocks[i]);
-    } else if (t_in >= next_tick && got) {
-      // Real time: tick at the control rate on the vehicle's newest IMU time.
-      next_tick = t_in + std::chrono::duration_cast<Clock::duration>(period);
+    } else if (got && core.lastImuUs() + period_us / 4 >= next_tick_us) {
+      // Real time: tick on the vehicle's newest IMU time once a control period of it has passed
+      // (every IMU sample when the IMU runs at the control rate).
       tick_us[ticks++] = core.lastImuUs();
+      next_tick_us = core.lastImuUs() + period_us;
     }
     // A required input gone stale: no command from stale data (checked before the ticks).
     const char* stale = st.flying ? t.staleInput(t_in, std::chrono::duration_cast<Clock::duration>(timeout)) : nullptr;
@@ -173,7 +174,7 @@ BridgeReport runBridge(const experiments::FlightScenario& s, const BridgeOptions
       st.flying = false;
       // The last tick falls within one control period of the end (the simulator stops at the
       // first plant step past it).
-      const bool completed = st.last_t_traj_s >= core.trajectoryDuration_s() - 1.0 / s.controller.rate_hz;
+      const bool completed = st.last_t_traj_s >= core.trajectoryDuration_s() - 1.5 / s.controller.rate_hz;
       report.flights_completed += completed ? 1 : 0;
       report.stale_mid_flight = !completed;
       report.message = fmt::format(
@@ -183,6 +184,7 @@ BridgeReport runBridge(const experiments::FlightScenario& s, const BridgeOptions
           completed ? "the trajectory had ended" : "mid-flight, the trajectory had not ended");
       notify(report.message);
       core.reset();
+      next_tick_us = 0;
       if (o.exit_on_stale || (o.flights > 0 && report.flights_completed >= o.flights)) break;
     }
   }

@@ -22,6 +22,12 @@ std::uint32_t periodUs(double period_s) noexcept {
 
 }  // namespace
 
+MotorMap motorMapOf(const model::RotorLayoutParams& layout) noexcept {
+  MotorMap m;
+  for (std::size_t i = 0; i < 4; ++i) m.px4_index[i] = static_cast<int>(layout.rotors[i].px4_motor) - 1;
+  return m;
+}
+
 void encodeImu(const model::ImuSample& s, double sample_period_s, Px4SensorCombined& m) noexcept {
   std::memset(&m, 0, sizeof m);
   m.timestamp = toMicroseconds(s.t_s);

@@ -120,6 +120,7 @@ SitlReport runSitl(const experiments::FlightScenario& s, const SitlOptions& o,
     }
     notify("bridge found; flying in lockstep");
   }
+  bool warned_writers = false;
   const auto wall0 = Clock::now();
   Px4ActuatorMotors cmd;
   auto& latest = t.commands;
@@ -130,6 +131,12 @@ SitlReport runSitl(const experiments::FlightScenario& s, const SitlOptions& o,
     if (!o.lockstep) std::this_thread::sleep_until(wall0 + std::chrono::duration<double>(now_s));
     publishReadings(t, core.sense(), now_s, imu_period_s, o);
     if (core.controlTickDue()) {
+      if (!warned_writers && matchedWriters(t.motors) > 1) {
+        // Two controllers on one vehicle: their commands would interleave.
+        notify(fmt::format("{} writers of actuator_motors on domain {}: more than one bridge commands this vehicle",
+                           matchedWriters(t.motors), o.dds.domain_id));
+        warned_writers = true;
+      }
       Px4BatteryStatus b;
       encodeBattery(now_s, core.batteryVoltage_V(), b);
       dds_write(t.battery, &b);

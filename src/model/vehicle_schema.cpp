@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "geaware/model/vehicle_schema.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+
+#include "geaware/model/mixer.hpp"
 
 namespace geaware::model {
 namespace {
@@ -174,9 +177,48 @@ std::vector<S> dragSpecs() {
   return s;
 }
 
+template <std::size_t I>
+double& rotorX(P& p) { return p.rotor_layout.rotors[I].x_m; }
+template <std::size_t I>
+double& rotorY(P& p) { return p.rotor_layout.rotors[I].y_m; }
+template <std::size_t I>
+double& rotorSpin(P& p) { return p.rotor_layout.rotors[I].spin; }
+template <std::size_t I>
+double& rotorMotor(P& p) { return p.rotor_layout.rotors[I].px4_motor; }
+
+/// The four keys of rotor I (all optional: the defaults are the X layout, PX4's numbering).
+template <std::size_t I>
+void addRotor(std::vector<S>& out, std::string_view x, std::string_view y, std::string_view spin,
+              std::string_view motor) {
+  S sx = number(x, "m", {-10.0, 10.0, kInclusive}, &rotorX<I>);
+  S sy = number(y, "m", {-10.0, 10.0, kInclusive}, &rotorY<I>);
+  S ss = number(spin, "", {-1.0, 1.0, kInclusive}, &rotorSpin<I>);
+  ss.note = "(+1 counter-clockwise seen from above, −1 clockwise)";
+  S sm = number(motor, "", {1.0, 12.0, kInclusive}, &rotorMotor<I>);
+  sm.note = "(PX4 motor number)";
+  for (S* s : {&sx, &sy, &ss, &sm}) {
+    s->optional = true;
+    out.push_back(*s);
+  }
+}
+
+/// The rotor layout (docs/vehicle-file.md, "Rotor layout").
+std::vector<S> layoutSpecs() {
+  std::vector<S> s;
+  addRotor<0>(s, "rotor_layout.rotor1.x_m", "rotor_layout.rotor1.y_m", "rotor_layout.rotor1.spin",
+              "rotor_layout.rotor1.px4_motor");
+  addRotor<1>(s, "rotor_layout.rotor2.x_m", "rotor_layout.rotor2.y_m", "rotor_layout.rotor2.spin",
+              "rotor_layout.rotor2.px4_motor");
+  addRotor<2>(s, "rotor_layout.rotor3.x_m", "rotor_layout.rotor3.y_m", "rotor_layout.rotor3.spin",
+              "rotor_layout.rotor3.px4_motor");
+  addRotor<3>(s, "rotor_layout.rotor4.x_m", "rotor_layout.rotor4.y_m", "rotor_layout.rotor4.spin",
+              "rotor_layout.rotor4.px4_motor");
+  return s;
+}
+
 std::vector<S> specs() {
   std::vector<S> s = bodySpecs();
-  for (auto* part : {&groundEffectSpecs, &dragSpecs}) {
+  for (auto* part : {&groundEffectSpecs, &dragSpecs, &layoutSpecs}) {
     for (auto& spec : part()) s.push_back(std::move(spec));
   }
   return s;
@@ -227,6 +269,44 @@ void levelingDenominator(const P& p, FieldChecker& c) {
   }
 }
 
+/// The controller's mixer is the X layout with fixed spins (model/mixer.hpp): a layout the file
+/// gives must be that one (positions within 2 % of the arm or 1 mm), spins ±1 as the mixer's, motor
+/// numbers whole and distinct.
+void rotorLayout(const P& p, FieldChecker& c) {
+  static constexpr const char* kRotor[4] = {"rotor_layout.rotor1", "rotor_layout.rotor2",
+                                            "rotor_layout.rotor3", "rotor_layout.rotor4"};
+  static constexpr const char* kWhere[4] = {"front right", "rear left", "front left", "rear right"};
+  const auto expected = Mixer::rotorPositions_B(p.diagonal_rotor_distance_m);
+  const double tolerance = std::max(1e-3, 0.02 * mixerArm_m(p.diagonal_rotor_distance_m));
+  const bool given = p.rotor_layout.positionsGiven();
+  for (std::size_t i = 0; i < 4; ++i) {
+    const RotorPlacement& r = p.rotor_layout.rotors[i];
+    const std::string key = kRotor[i];
+    const Eigen::Vector3d& e = expected[i];
+    if (given && (std::abs(r.x_m - e.x()) > tolerance || std::abs(r.y_m - e.y()) > tolerance)) {
+      c.fail(key + ".x_m", formatValue(r.x_m) + ", y_m " + formatValue(r.y_m),
+             std::string("the ") + kWhere[i] + " rotor of the X layout of geometry.diagonal_rotor_distance_m: (" +
+                 formatValue(e.x()) + ", " + formatValue(e.y()) + ") m within " + formatValue(tolerance) +
+                 " m (the controller's mixer is that layout)");
+    }
+    const double spin = -Mixer::yawSigns()[static_cast<Eigen::Index>(i)];  // CCW: reaction torque −z
+    if (r.spin != spin) {
+      c.fail(key + ".spin", formatValue(r.spin),
+             formatValue(spin) + std::string(spin > 0 ? " (counter-clockwise" : " (clockwise") +
+                 " seen from above, as the controller's mixer turns the " + kWhere[i] + " rotor)");
+    }
+    if (r.px4_motor != std::round(r.px4_motor)) {
+      c.fail(key + ".px4_motor", formatValue(r.px4_motor), "a whole motor number 1…12");
+    }
+    for (std::size_t j = 0; j < i; ++j) {
+      if (p.rotor_layout.rotors[j].px4_motor == r.px4_motor) {
+        c.fail(key + ".px4_motor", formatValue(r.px4_motor),
+               std::string("a motor number of its own (") + kRotor[j] + " has it)");
+      }
+    }
+  }
+}
+
 std::vector<ParamRule<P>> rules() {
   return {
       {"inertia_kgm2.zz", {"inertia_kgm2.xx", "inertia_kgm2.yy", "inertia_kgm2.zz"}, inertiaTriangle},
@@ -238,6 +318,14 @@ std::vector<ParamRule<P>> rules() {
       {"ground_effect.leveling_torque.scale_m4",
        {"ground_effect.leveling_torque.g3_m", "ground_effect.leveling_torque.g4_m2"},
        levelingDenominator},
+      {"rotor_layout.rotor4.px4_motor",
+       {"geometry.diagonal_rotor_distance_m", "rotor_layout.rotor1.x_m", "rotor_layout.rotor1.y_m",
+        "rotor_layout.rotor1.spin", "rotor_layout.rotor1.px4_motor", "rotor_layout.rotor2.x_m",
+        "rotor_layout.rotor2.y_m", "rotor_layout.rotor2.spin", "rotor_layout.rotor2.px4_motor",
+        "rotor_layout.rotor3.x_m", "rotor_layout.rotor3.y_m", "rotor_layout.rotor3.spin",
+        "rotor_layout.rotor3.px4_motor", "rotor_layout.rotor4.x_m", "rotor_layout.rotor4.y_m",
+        "rotor_layout.rotor4.spin", "rotor_layout.rotor4.px4_motor"},
+       rotorLayout},
   };
 }
 

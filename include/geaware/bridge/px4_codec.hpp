@@ -9,6 +9,7 @@
 
 #include "geaware/bridge/frames.hpp"
 #include "geaware/model/sensor_data.hpp"
+#include "geaware/model/vehicle_params.hpp"
 #include "px4_msgs/msg/ActuatorMotors.h"
 #include "px4_msgs/msg/BatteryStatus.h"
 #include "px4_msgs/msg/DistanceSensor.h"
@@ -28,6 +29,9 @@ using Px4BatteryStatus = px4_msgs_msg_dds__BatteryStatus_;
 using Px4OffboardControlMode = px4_msgs_msg_dds__OffboardControlMode_;
 using Px4ActuatorMotors = px4_msgs_msg_dds__ActuatorMotors_;
 using RosClock = rosgraph_msgs_msg_dds__Clock_;
+
+/// The vehicle file's motor numbers (rotor_layout.rotorN.px4_motor, 1-based) as a motor map.
+[[nodiscard]] MotorMap motorMapOf(const model::RotorLayoutParams& layout) noexcept;
 
 /// IMU sample → sensor_combined (FRD body, float32; both sensors at the sample's time).
 void encodeImu(const model::ImuSample& s, double sample_period_s, Px4SensorCombined& m) noexcept;

@@ -43,6 +43,19 @@ class MapStack {
     }
     return open_.empty() ? root_ : *open_.back().second;
   }
+  /// Whether every map of `sections` exists (opening those that do, as at() would); the maps
+  /// already open along the path are not closed.
+  bool has(const std::vector<std::string>& sections) {
+    std::size_t open = 0;
+    while (open < open_.size() && open < sections.size() && open_[open].first == sections[open]) {
+      ++open;
+    }
+    for (std::size_t n = open; n < sections.size(); ++n) {
+      const std::vector<std::string> parent(sections.begin(), sections.begin() + static_cast<std::ptrdiff_t>(n));
+      if (!at(parent).has(sections[n])) return false;
+    }
+    return true;
+  }
   /// Closes every map below the root (the root is the caller's).
   void closeAll() { closeTo(0); }
 
@@ -73,8 +86,10 @@ void readOne(MapStack& maps, const model::ParamSpec<T>& s, T& out) {
   auto parts = splitKey(s.key);
   const std::string leaf = parts.back();
   parts.pop_back();
+  // An optional key, or a whole section of them, left out: the struct's default stays.
+  if (s.optional && !maps.has(parts)) return;
   MapReader& m = maps.at(parts);
-  if (s.optional && !m.has(leaf)) return;  // the struct's default stays
+  if (s.optional && !m.has(leaf)) return;
   switch (s.kind) {
     case model::ParamKind::kNumber: s.number(out) = m.number(leaf); break;
     case model::ParamKind::kList: s.list(out) = m.numbers(leaf); break;

@@ -4,6 +4,7 @@
 // with its unit in the field name and comment. The vehicle file format (config/vehicles/*.yaml)
 // mirrors this struct key for key; see docs/vehicle-file.md.
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -73,6 +74,33 @@ struct DragTableParams {
   std::vector<double> d_y_N_per_mps;     ///< body-y drag coefficient at each height [N/(m/s)]
 };
 
+/// One rotor of the airframe, in the mixer's order (model/mixer.hpp: rotor 1 front right, 2 rear
+/// left, 3 front left, 4 rear right), as a flight controller configures it.
+struct RotorPlacement {
+  double x_m = 0.0;        ///< rotor centre along body x (forward); x = y = 0: from the X layout [m]
+  double y_m = 0.0;        ///< rotor centre along body y (left) [m]
+  double spin = 1.0;       ///< +1 counter-clockwise seen from above (PX4: CA_ROTORn_KM > 0), −1 clockwise [-]
+  double px4_motor = 1.0;  ///< PX4's motor number 1…12 (actuator_motors.control[n − 1]) [-]
+};
+
+/// Rotor positions, spin directions and motor numbers (issue 12 item 5). The defaults are the X
+/// layout of geometry.diagonal_rotor_distance_m with PX4's "Quadrotor x" numbering, which is the
+/// mixer's order: motor 1 front right (counter-clockwise), 2 rear left (counter-clockwise), 3
+/// front left (clockwise), 4 rear right (clockwise) (PX4 airframe reference, "Quadrotor x").
+struct RotorLayoutParams {
+  std::array<RotorPlacement, 4> rotors{{{0.0, 0.0, 1.0, 1.0},
+                                        {0.0, 0.0, 1.0, 2.0},
+                                        {0.0, 0.0, -1.0, 3.0},
+                                        {0.0, 0.0, -1.0, 4.0}}};
+  /// False when every position is 0 (the file gave none: the X layout is meant).
+  [[nodiscard]] bool positionsGiven() const noexcept {
+    for (const auto& r : rotors) {
+      if (r.x_m != 0.0 || r.y_m != 0.0) return true;
+    }
+    return false;
+  }
+};
+
 /// Everything the controller-side model knows about one quadrotor (X configuration).
 struct VehicleParams {
   std::string name;                          ///< free text, e.g. "paper_quad"
@@ -86,6 +114,7 @@ struct VehicleParams {
   AdditionalThrustParams additional_thrust;
   LevelingTorqueParams leveling_torque;
   DragTableParams drag;
+  RotorLayoutParams rotor_layout;  ///< optional in the file: the X layout, PX4's numbering
 
   /// Every field that is not finite or not in its physical range, with the value and the
   /// expectation. Empty when the parameters are usable.
