@@ -42,6 +42,8 @@ struct TiltedSamples {
   std::vector<double> h;
   std::vector<double> u;
   std::vector<double> y;
+  std::vector<double> w;  ///< samples behind each (PlatformLog::count; 1 without a count)
+  double samples = 0.0;   ///< Σ w
   double h_min_m = std::numeric_limits<double>::infinity();
   double h_max_m = -std::numeric_limits<double>::infinity();
   double tilt_min_deg = std::numeric_limits<double>::infinity();
@@ -88,14 +90,16 @@ TiltedSamples tiltedSamples(const PlatformLog& log, const LevelingInputs& in,
     t.h.push_back(log.h_m[i]);
     t.u.push_back(sample.u);
     t.y.push_back(sample.y);
+    t.w.push_back(log.samples(i));
+    t.samples += log.samples(i);
     t.h_min_m = std::min(t.h_min_m, log.h_m[i]);
     t.h_max_m = std::max(t.h_max_m, log.h_m[i]);
     t.tilt_min_deg = std::min(t.tilt_min_deg, tilt);
     t.tilt_max_deg = std::max(t.tilt_max_deg, tilt);
   }
-  if (t.h.size() < 10) {
+  if (t.samples < 10.0) {  // rows that are means count as their samples
     throw IdentError(log.source + ": cannot fit the leveling torque: only " +
-                     std::to_string(t.h.size()) + " samples with a tilted board (" +
+                     num(t.samples) + " samples with a tilted board (" +
                      num(options.level_tilt_deg) + "° < |tilt| ≤ " + num(options.max_tilt_deg) +
                      "°; " + std::to_string(t.beyond) + " more beyond the tilt limit)");
   }
@@ -116,6 +120,10 @@ LevelingFit fitLeveling(const PlatformLog& log, const LevelingInputs& in,
   const std::vector<double>& h = t.h;
   const std::vector<double>& u = t.u;
   const std::vector<double>& y = t.y;
+  // Rows that are means weigh as their count: √w on each residual (the fit of the log expanded
+  // to its counts; w = 1 leaves every number as it was).
+  std::vector<double> sw(t.w.size());
+  for (std::size_t j = 0; j < sw.size(); ++j) sw[j] = std::sqrt(t.w[j]);
   out.h_min_m = t.h_min_m;
   out.h_max_m = t.h_max_m;
   out.tilt_min_deg = t.tilt_min_deg;
@@ -138,9 +146,9 @@ LevelingFit fitLeveling(const PlatformLog& log, const LevelingInputs& in,
       double syy = 0.0;
       for (std::size_t j = 0; j < h.size(); j += stride) {
         const double x = levelingCoefficient(g3, g4, 1.0, h[j]) * u[j];
-        sxx += x * x;
-        sxy += x * y[j];
-        syy += y[j] * y[j];
+        sxx += t.w[j] * x * x;
+        sxy += t.w[j] * x * y[j];
+        syy += t.w[j] * y[j] * y[j];
       }
       if (!(sxx > 0.0)) continue;
       const double scale = sxy / sxx;
@@ -166,11 +174,11 @@ LevelingFit fitLeveling(const PlatformLog& log, const LevelingInputs& in,
     if (!validShape(x[0], x[1])) return false;
     const double d = h[j] * h[j] + x[0] * h[j] + x[1];
     const double m = h[j] / (d * d);
-    r = y[j] - x[2] * m * u[j];
+    r = sw[j] * (y[j] - x[2] * m * u[j]);
     if (g != nullptr) {
-      g[0] = 2.0 * x[2] * m * u[j] * h[j] / d;
-      g[1] = 2.0 * x[2] * m * u[j] / d;
-      g[2] = -m * u[j];
+      g[0] = sw[j] * (2.0 * x[2] * m * u[j] * h[j] / d);
+      g[1] = sw[j] * (2.0 * x[2] * m * u[j] / d);
+      g[2] = sw[j] * (-m * u[j]);
     }
     return true;
   };
@@ -219,10 +227,10 @@ LevelingTableFit fitLevelingTable(const PlatformLog& log, const LevelingInputs& 
         count = tableBasis(knots, t.h[j], index, value);
         for (int e = 0; e < count; ++e) {
           value[e] *= t.u[j];
-          ++out.M_G.samples[static_cast<std::size_t>(index[e])];
+          out.M_G.samples[static_cast<std::size_t>(index[e])] += static_cast<std::size_t>(std::llround(t.w[j]));
         }
         y = t.y[j];
-        w = 1.0;
+        w = t.w[j];  // a row that is a mean weighs as its count
         return true;
       },
       options.robust);

@@ -38,13 +38,20 @@ namespace geaware::ident {
 /// Spearman rank correlation with ties handled by average ranks (eq. 4).
 [[nodiscard]] double spearman(std::span<const double> x, std::span<const double> y);
 
+/// Weighted forms, for rows that stand for `w[i]` samples each (a stand table's mean rows and
+/// their count): the ranks and the correlation the table expanded to its counts gives (each row
+/// repeated w[i] times). w[i] > 0.
+[[nodiscard]] std::vector<double> averageRanks(std::span<const double> v, std::span<const double> w);
+[[nodiscard]] double pearson(std::span<const double> x, std::span<const double> y,
+                             std::span<const double> w);
+
 struct CorrelationTable {
   /// "N_base(1)" … "N_base(4)", "h", "delta".
   std::vector<std::string> row_names;
   /// "x_W'tau_B", "z_W'tau_B", "y_W'tau_G", "y_W'tau_G/sin(delta)", "f_G".
   std::vector<std::string> column_names;
   Eigen::MatrixXd r;                 ///< rows × columns; NaN where a variable is constant
-  std::vector<std::size_t> samples;  ///< samples behind each column
+  std::vector<std::size_t> samples;  ///< samples behind each column (rows weighted by their count)
 };
 
 struct CorrelationOptions {
@@ -53,7 +60,8 @@ struct CorrelationOptions {
 };
 
 /// The supplementary table from a platform log. `vehicle` (validated) gives k_T, k_TY and b
-/// for the separation above and the mixer for N_base.
+/// for the separation above and the mixer for N_base. Rows with a count (PlatformLog::count)
+/// weigh as that many samples: the table is the one of the log expanded to its counts.
 [[nodiscard]] CorrelationTable platformCorrelations(const PlatformLog& log,
                                                     const model::VehicleParams& vehicle,
                                                     const CorrelationOptions& options = {});
