@@ -8,6 +8,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <fstream>
 #include <string>
 #include <string_view>
@@ -121,9 +122,29 @@ class V5Layout {
   std::uintmax_t check() {
     char header[128] = {};
     in_.read(header, sizeof header);
-    if (!in_ || std::string_view(header, 10) == "MATLAB 7.3") return 0;
+    if (!in_) {
+      throw LogError(file_.string(), "not a MATLAB .mat file libmatio can open (v5, v7 or v7.3 expected): " +
+                                         std::to_string(size_) + " bytes, shorter than the 128-byte header");
+    }
+    // libmatio decides the format as here (mat.c, Mat_Open): the endian indicator (bytes 126–127,
+    // "IM" or "MI") and the version field (bytes 124–125: 0x0100 v5/v7, 0x0200 v7.3), never the
+    // header's text. Anything else it reads as a MATLAB v4 file, whose headers (name length,
+    // rows × columns) it allocates by unchecked: refused here, geaware does not read v4 files.
+    // (fuzz_mat: a "MATLAB 7.3" text over a v5 version field skipped this walk, and libmatio
+    // then allocated 4 GiB from an unchecked element.)
+    const auto byte = [&](int i) { return static_cast<unsigned>(static_cast<unsigned char>(header[i])); };
+    if (!((byte(126) == 'I' && byte(127) == 'M') || (byte(126) == 'M' && byte(127) == 'I'))) {
+      fail(126, "the header's endian indicator is " + hex(byte(126) << 8 | byte(127)) +
+                    ", expected 'IM' or 'MI' (a v5, v7 or v7.3 .mat file; MATLAB v4 files are not read)");
+    }
+    swap_ = byte(126) == 'M';
+    const unsigned version = swap_ ? byte(124) << 8 | byte(125) : byte(125) << 8 | byte(124);
+    if (version == 0x0200) return 0;  // v7.3: HDF5, opened by libhdf5
+    if (version != 0x0100) {
+      fail(124, "the header's version field is " + hex(version) +
+                    ", expected 0x0100 (v5, v7) or 0x0200 (v7.3) (MATLAB v4 files are not read)");
+    }
     std::uintmax_t walked = size_;
-    swap_ = header[126] == 'M' && header[127] == 'I';
     std::uintmax_t at = 128;
     while (at < size_) {
       unsigned char tag[8];
@@ -176,6 +197,11 @@ class V5Layout {
         static_cast<std::uint32_t>(p[2]) << 16 | static_cast<std::uint32_t>(p[3]) << 24;
     return swap_ ? __builtin_bswap32(v) : v;
   }
+  static std::string hex(unsigned v) {
+    char text[16];
+    std::snprintf(text, sizeof text, "0x%04x", v);
+    return text;
+  }
   [[noreturn]] void fail(std::uintmax_t at, const std::string& message) const {
     throw LogError(file_.string(), at, message);
   }
@@ -194,15 +220,36 @@ class V5Layout {
       }
       pos += 8;
       const std::uint32_t type = u32(tag), bytes = u32(tag + 4);
+      // libmatio reads a matrix's first two elements by position, as the array flags and the
+      // dimensions, and then its name tag right after the dimensions it understood: with any
+      // other type there, it and this walk disagree on where the name is (fuzz_mat: a dimensions
+      // element of type 8 made libmatio take the next 8 bytes as a name tag of 1.4 GB).
+      // A type MAT-File Format does not define: libmatio reads such an element's bytes as it
+      // guesses, and then the tags that follow from where it stopped, not where this walk does
+      // (fuzz_mat: a sparse matrix's index element of type 101 made libmatio take doubles for a
+      // tag of 1 GB).
+      const std::uint32_t data_type = (type >> 16) != 0 ? type & 0xffffU : type;
+      if (data_type == 0 || data_type == 8 || data_type == 10 || data_type == 11 || data_type > 18) {
+        fail(at, "an element of type " + std::to_string(data_type) + " inside this variable, expected a MAT-File data "
+                 "type (1–7, 9, 12–18): a damaged .mat file");
+      }
+      const bool too_long = (type >> 16) == 0 && bytes > length - pos;  // failed below, by its size
+      if (element == 0 && (type != 6 || bytes != 8) && !too_long) {
+        fail(at, "a matrix whose first element (its array flags) has type " + std::to_string(type & 0xffffU) +
+                     " of " + std::to_string((type >> 16) != 0 ? type >> 16 : bytes) +
+                     " bytes, expected type 6 (miUINT32) of 8 bytes: a damaged .mat file");
+      }
+      if (element == 1 && type != 5) {
+        fail(at, "a matrix whose second element (its dimensions) has type " + std::to_string(type & 0xffffU) +
+                     ((type >> 16) != 0 ? " in a small element" : "") +
+                     ", expected type 5 (miINT32) in a full tag: a damaged .mat file");
+      }
       if ((type >> 16) != 0) {  // a small element: its data was in the 8 bytes read
-        if (element == 1 && !sparse) {
-          elements = checkDims(tag + 4, std::min<std::uint32_t>(type >> 16, 4) / 4, length, at);
-        }
         if (element == 3 && (cls == 2 || cls == 3))
           name_length = u32(tag + 4);  // a struct's field-name length
         continue;
       }
-      if (element == 0 && type == 6 && bytes == 8) {  // the array flags: the class in the low byte
+      if (element == 0 && !too_long) {  // the array flags (type 6, 8 bytes): the class in the low byte
         unsigned char flags[8];
         if (!src.read(flags, 8)) fail(at, "the variable ends inside its flags");
         cls = u32(flags) & 0xffU;
@@ -210,8 +257,7 @@ class V5Layout {
         pos += 8;
         continue;
       }
-      if (element == 1 && type == 5 &&
-          !sparse) {  // the dimensions, read before libmatio allocates by them
+      if (element == 1 && !sparse && !too_long) {  // the dimensions (type 5), read before libmatio allocates by them
         if (bytes > 4 * 32) fail(at, "a variable of more than 32 dimensions");
         unsigned char dims[4 * 32];
         if (!src.read(dims, bytes)) fail(at, "the variable ends inside its dimensions");

@@ -12,7 +12,9 @@ namespace geaware::io::detail {
 /// are walked, at most `limit` bytes), checking that each fits in its variable and the file and
 /// that no variable's dimensions claim more elements than its bytes or limit / 8. Returns the
 /// bytes walked (an upper bound on the numbers the file can hold), 0 for a v7.3 (HDF5) file,
-/// which is not walked. Throws LogError naming the file and the variable's byte.
+/// which is not walked (as libmatio, by the header's version field, not its text). Throws
+/// LogError naming the file and the variable's byte, or the header's byte for a header libmatio
+/// would read as a MATLAB v4 file (not read) or a file shorter than the header.
 [[nodiscard]] std::uintmax_t checkMatLayout(const std::filesystem::path& file, std::uintmax_t size,
                                             std::uintmax_t limit);
 

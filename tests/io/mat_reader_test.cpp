@@ -211,6 +211,62 @@ TEST(MatReader, ErrorsNameTheFile) {
   EXPECT_THROW((void)geaware::io::readMat(dir() / "missing.mat"), LogError);
 }
 
+TEST(MatReader, TheHeaderIsReadAsLibmatioReadsIt) {
+  // libmatio takes the format from the header's version field and endian indicator, not from its
+  // text. fuzz_mat found a v5 file whose text said "MATLAB 7.3": geaware took it for HDF5 and
+  // skipped its walk, and libmatio read it as v5 and allocated 4 GiB from an unchecked element.
+  Contents c;
+  const auto whole = dir() / "whole73text.mat";
+  ASSERT_TRUE(write(whole, MAT_FT_MAT5, MAT_COMPRESSION_NONE, c));
+  const auto patched = [&](const char* name, std::streamoff at, const std::string& bytes) {
+    const auto f = dir() / name;
+    std::filesystem::copy_file(whole, f, std::filesystem::copy_options::overwrite_existing);
+    std::fstream io(f, std::ios::binary | std::ios::in | std::ios::out);
+    io.seekp(at);
+    io.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    return f;
+  };
+  const std::string text73 = "MATLAB 7.3 MAT-file";
+  // The text alone changes nothing: the file is walked and read as the v5 file it is.
+  expectContents(geaware::io::readMat(patched("text73.mat", 0, text73)), c);
+  // … and so an element that runs past its variable is found before libmatio reads it.
+  const auto f = patched("text73_huge.mat", 0, text73);
+  {
+    std::fstream io(f, std::ios::binary | std::ios::in | std::ios::out);
+    const std::uint32_t bytes = 0x7FFFFFF0U;
+    io.seekp(140);
+    io.write(reinterpret_cast<const char*>(&bytes), 4);
+  }
+  const auto message = [](const std::filesystem::path& file) -> std::string {
+    try {
+      (void)geaware::io::readMat(file);
+    } catch (const LogError& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  EXPECT_NE(message(f).find(f.string() + ": byte 128: an element of 2147483632 bytes inside this variable runs past its end"),
+            std::string::npos)
+      << message(f);
+  // A version field or endian indicator that libmatio would take for a MATLAB v4 file (whose
+  // headers it allocates by unchecked): refused at the header's byte.
+  const auto v = patched("version1.mat", 124, std::string("\x01\x00", 2));
+  EXPECT_EQ(message(v), v.string() + ": byte 124: the header's version field is 0x0001, expected 0x0100 (v5, v7) or "
+                                     "0x0200 (v7.3) (MATLAB v4 files are not read)");
+  // Inside a variable, a type MAT-File Format does not define, or dimensions of another type than
+  // miINT32: libmatio would read the following tags from elsewhere than this walk (fuzz_mat: the
+  // first variable's dimensions tag, at byte 152, of type 8 made it allocate a 1.4 GB name).
+  const auto d = patched("dims8.mat", 152, std::string("\x08\x00\x00\x00", 4));
+  EXPECT_EQ(message(d), d.string() + ": byte 128: an element of type 8 inside this variable, expected a MAT-File "
+                                     "data type (1–7, 9, 12–18): a damaged .mat file");
+  const auto i = patched("dims6.mat", 152, std::string("\x06\x00\x00\x00", 4));
+  EXPECT_EQ(message(i), i.string() + ": byte 128: a matrix whose second element (its dimensions) has type 6, "
+                                     "expected type 5 (miINT32) in a full tag: a damaged .mat file");
+  const auto e = patched("endian.mat", 126, "XY");
+  EXPECT_EQ(message(e), e.string() + ": byte 126: the header's endian indicator is 0x5859, expected 'IM' or 'MI' "
+                                     "(a v5, v7 or v7.3 .mat file; MATLAB v4 files are not read)");
+}
+
 TEST(MatReader, AMapReadsAStructsFieldsWithItsTime) {
   Contents c;
   const auto f = dir() / "flight.mat";
