@@ -130,7 +130,7 @@ int runSitlCommand(const SitlCliOptions& o) {
 
 struct BridgeCliOptions {
   NetOptions net;
-  std::string scenario, controller = "recommended", controller_params;
+  std::string scenario, controller, controller_params;  // controller empty: the scenario's
   double input_timeout_s = 0.2;
   double max_height_age_s = 0.05;
   int flights = 0;
@@ -140,7 +140,9 @@ struct BridgeCliOptions {
 
 int runBridgeCommand(const BridgeCliOptions& o) {
   experiments::FlightScenario s = experiments::loadScenarioFile(o.scenario);
-  if (!control::parseConfiguration(o.controller, s.controller)) {
+  // The scenario's configuration and its controller_params file's values, unless --controller
+  // names another configuration (whose additions then take that configuration's settings).
+  if (!o.controller.empty() && !control::parseConfiguration(o.controller, s.controller)) {
     throw UsageError("--controller '" + o.controller + "': expected recommended or ACC:TORQUE");
   }
   if (!o.controller_params.empty()) s.controller = io::withControllerParamsFile(s.controller, o.controller_params);
@@ -213,7 +215,9 @@ Runner addBridgeCommand(CLI::App& app) {
                   "(its truth is not read)")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd->add_option("--controller", o->controller, "recommended or ACC:TORQUE, as for fly")->capture_default_str();
+  cmd->add_option("--controller", o->controller,
+                  "recommended or ACC:TORQUE, as for fly (default: the scenario's controller, with its "
+                  "controller_params file)");
   cmd->add_option("--controller-params", o->controller_params, "controller-parameters YAML file")
       ->check(CLI::ExistingFile);
   addNetOptions(cmd, o->net);

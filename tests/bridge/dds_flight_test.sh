@@ -4,7 +4,7 @@
 # domain DOMAIN of this test's own) fly SCENARIO to the end; all-RMSE within 1.5x of the same
 # flight in one process (`geaware fly`, same scenario: same seed, same truth), no strike.
 # Usage: dds_flight_test.sh GEAWARE OUTDIR DOMAIN SCENARIO [CONTROLLER]
-# CONTROLLER: the scenario's, for the bridge (default: the bridge's own default, recommended).
+# CONTROLLER: the scenario's, for the bridge (default: the bridge takes the scenario's own).
 set -euo pipefail
 geaware=$1 out=$2 domain=$3 scenario=$4
 controller=()
@@ -14,7 +14,7 @@ rm -f "$out"/fly.json "$out"/sitl.json
 "$geaware" fly --scenario "$scenario" --quiet --json "$out/fly.json" >/dev/null
 # The scenario file's controller for both, so that the flights compare.
 "$geaware" bridge --scenario "$scenario" "${controller[@]}" --domain "$domain" \
-  --flights 1 --input-timeout 1 --stats >"$out/bridge.out" 2>"$out/bridge.err" &
+  --flights 1 --input-timeout 1 --exit-on-stale --stats >"$out/bridge.out" 2>"$out/bridge.err" &
 bridge=$!
 trap 'kill "$bridge" 2>/dev/null || true' EXIT
 "$geaware" sitl --scenario "$scenario" --domain "$domain" --wait-bridge 60 --json "$out/sitl.json" \
