@@ -103,8 +103,11 @@ function(geaware_install_package)
   install(FILES ${PROJECT_BINARY_DIR}/geawareConfig.cmake
                 ${PROJECT_BINARY_DIR}/geawareConfigVersion.cmake
           DESTINATION ${GEAWARE_INSTALL_CMAKEDIR} COMPONENT development)
+  # The bridge's headers stay out: its library is not exported (it is the command line's
+  # `bridge` and `sitl`), and they include the message structs idlc generates in the build tree.
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/geaware
-          DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT development)
+          DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT development
+          PATTERN "bridge" EXCLUDE)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/config/ DESTINATION ${GEAWARE_INSTALL_DATADIR}/config
           COMPONENT runtime)
   install(FILES ${PROJECT_SOURCE_DIR}/LICENSE ${PROJECT_SOURCE_DIR}/THIRD-PARTY-NOTICES.md

@@ -90,6 +90,22 @@ if(NOT pages)
   message(FATAL_ERROR "installed geaware fly --report wrote no page:\n${out}\n${err}")
 endif()
 
+# Built with the DDS bridge (GEAWARE_BRIDGE): the installed command line has `bridge` and `sitl`
+# (their help states the topics), and no bridge header is installed (the bridge is no component).
+if(BRIDGE)
+  foreach(sub bridge sitl)
+    execute_process(COMMAND ${prefix}/bin/geaware ${sub} --help WORKING_DIRECTORY ${WORK_DIR}/elsewhere
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    if(NOT rc EQUAL 0 OR NOT out MATCHES "rt/fmu/out/")
+      message(FATAL_ERROR "installed geaware ${sub} --help (${rc}) names no PX4 topic:\n${out}\n${err}")
+    endif()
+  endforeach()
+  if(EXISTS ${prefix}/include/geaware/bridge)
+    message(FATAL_ERROR "the bridge's headers were installed (they need the build tree's IDL structs)")
+  endif()
+  message(STATUS "installed geaware bridge/sitl: ok")
+endif()
+
 # The Debian package.
 run("cpack -G DEB" ${CPACK} -G DEB -B ${WORK_DIR}/deb --config ${BUILD_DIR}/CPackConfig.cmake)
 file(GLOB debs ${WORK_DIR}/deb/geaware_${VERSION}_*.deb)
@@ -108,5 +124,11 @@ endforeach()
 run("dpkg-deb --field" dpkg-deb --field ${deb} Depends)
 if(NOT last_out MATCHES "libeigen3-dev")
   message(FATAL_ERROR "${deb} does not depend on libeigen3-dev: ${last_out}")
+endif()
+# The command line links Cyclone DDS's shared library when built with the bridge: dpkg-shlibdeps
+# must have put its package into Depends (where dpkg-shlibdeps exists).
+find_program(dpkg_shlibdeps dpkg-shlibdeps)
+if(BRIDGE AND dpkg_shlibdeps AND NOT last_out MATCHES "libddsc")
+  message(FATAL_ERROR "${deb} built with the bridge does not depend on Cyclone DDS (libddsc…): ${last_out}")
 endif()
 message(STATUS "installed package: ${deb}")
