@@ -26,13 +26,18 @@ trajectory:
   yaw_deg: 0.0
 controller: recommended
 YAML
-"$geaware" bridge --scenario "$out/base.yaml" --domain "$domain" --real-time --flights 1 \
-  --input-timeout 1 --exit-on-stale --stats >"$out/bridge.out" 2>"$out/bridge.err" &
+# The bridge runs until stopped: in real time its trajectory starts at its first tick, 5-20 ms
+# after the simulator's, so when the simulator ends with its trajectory the bridge's has not
+# quite ended, and --flights 1 / --exit-on-stale would call that "mid-flight" (by a tick or
+# less). It is stopped with SIGTERM (its clean stop) once the simulator has finished.
+"$geaware" bridge --scenario "$out/base.yaml" --domain "$domain" --real-time \
+  --input-timeout 1 --stats >"$out/bridge.out" 2>"$out/bridge.err" &
 bridge=$!
 trap 'kill "$bridge" 2>/dev/null || true' EXIT
 "$geaware" sitl --scenario "$out/base.yaml" --domain "$domain" --real-time --wait-bridge 60 \
   --command-timeout 1 --json "$out/sitl.json" >"$out/sitl.out" 2>"$out/sitl.err" \
   || { echo "sitl failed:"; cat "$out/sitl.out" "$out/sitl.err" "$out/bridge.err"; exit 1; }
+kill -TERM "$bridge"
 wait "$bridge" || { echo "bridge failed:"; cat "$out/bridge.out" "$out/bridge.err"; exit 1; }
 trap - EXIT
 cat "$out/sitl.out" "$out/bridge.out"
@@ -41,7 +46,7 @@ import json, re, sys
 sitl = json.load(open(sys.argv[1]))
 bridge = open(sys.argv[2]).read()
 assert not sitl["crashed"], f"strike: {sitl['crash']}"
-commands = int(re.search(r"bridge: (\d+) motor commands, 1 flights completed", bridge).group(1))
+commands = int(re.search(r"bridge: (\d+) motor commands", bridge).group(1))
 ticks = round(sitl["simulated_s"] * 200)
 print(f"{commands} commands over {sitl['simulated_s']:.2f} s of flight ({ticks} control periods)")
 assert commands >= 0.5 * ticks, "the bridge answered on fewer than half of the control ticks"
