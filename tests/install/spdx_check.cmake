@@ -4,7 +4,7 @@
 cmake_minimum_required(VERSION 3.22)
 set(missing "")
 set(count 0)
-foreach(dir include src apps tests examples bench cmake fuzz)
+foreach(dir include src apps tests examples bench cmake fuzz python)
   file(GLOB_RECURSE files LIST_DIRECTORIES false
        ${SOURCE_DIR}/${dir}/*.cpp ${SOURCE_DIR}/${dir}/*.hpp ${SOURCE_DIR}/${dir}/*.h
        ${SOURCE_DIR}/${dir}/*.c ${SOURCE_DIR}/${dir}/*.cmake ${SOURCE_DIR}/${dir}/*.in
