@@ -24,4 +24,11 @@ endif()
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "libeigen3-dev (>= 3.4)")
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS
     "libyaml-cpp-dev, nlohmann-json3-dev, libfmt-dev, libceres-dev, libdlib-dev, libmatio-dev, chromium")
+# The Python module (python/, GEAWARE_PYTHON) is built for one Python version and imports numpy.
+if(GEAWARE_PYTHON)
+  math(EXPR geaware_python_next "${Python3_VERSION_MINOR} + 1")
+  string(APPEND CPACK_DEBIAN_PACKAGE_RECOMMENDS
+         ", python3 (>= ${Python3_VERSION_MAJOR}.${Python3_VERSION_MINOR}), "
+         "python3 (<< ${Python3_VERSION_MAJOR}.${geaware_python_next}), python3-numpy")
+endif()
 include(CPack)

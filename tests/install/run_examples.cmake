@@ -90,6 +90,19 @@ if(NOT pages)
   message(FATAL_ERROR "installed geaware fly --report wrote no page:\n${out}\n${err}")
 endif()
 
+# Built with the Python module (GEAWARE_PYTHON): the installed package imports from another
+# directory and loads the installed vehicle file.
+if(PYTHON)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${prefix}/lib/python3/dist-packages
+                          ${PYTHON} -c "import geaware; print(geaware.__file__); print(geaware.load_vehicle('${prefix}/share/geaware/config/vehicles/paper_quad.yaml').mass_kg)"
+                  WORKING_DIRECTORY ${WORK_DIR}/elsewhere RESULT_VARIABLE rc
+                  OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT out MATCHES "^${prefix}/lib/python3/dist-packages/geaware/__init__.py\n1\.696\n$")
+    message(FATAL_ERROR "installed Python module (${rc}):\n${out}\n${err}")
+  endif()
+  message(STATUS "installed Python module: ok")
+endif()
+
 # Built with the DDS bridge (GEAWARE_BRIDGE): the installed command line has `bridge` and `sitl`
 # (their help states the topics), and no bridge header is installed (the bridge is no component).
 if(BRIDGE)
