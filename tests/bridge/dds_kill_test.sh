@@ -7,6 +7,9 @@ set -euo pipefail
 geaware=$1 out=$2 domain=$3 scenario=$4
 timeout_s=0.3
 mkdir -p "$out"
+# A previous run's bridge.err holds "sending motor commands": the loop below could read it
+# before the new bridge's redirection truncates it, and then find it gone ("bridge never flew").
+rm -f "$out"/*
 "$geaware" bridge --scenario "$scenario" --domain "$domain" --input-timeout "$timeout_s" \
   --exit-on-stale >"$out/bridge.out" 2>"$out/bridge.err" &
 bridge=$!
