@@ -13,6 +13,7 @@ mkdir -p "$out"
 rm -f "$out"/fly.json "$out"/sitl.json
 "$geaware" fly --scenario "$scenario" --quiet --json "$out/fly.json" >/dev/null
 # The scenario file's controller for both, so that the flights compare.
+fly_dds() {
 "$geaware" bridge --scenario "$scenario" "${controller[@]}" --domain "$domain" \
   --flights 1 --input-timeout 1 --exit-on-stale --stats >"$out/bridge.out" 2>"$out/bridge.err" &
 bridge=$!
@@ -21,6 +22,16 @@ trap 'kill "$bridge" 2>/dev/null || true' EXIT
   >"$out/sitl.out" 2>"$out/sitl.err" || { echo "sitl failed:"; cat "$out/sitl.out" "$out/sitl.err"; cat "$out/bridge.err"; exit 1; }
 wait "$bridge" || { echo "bridge failed:"; cat "$out/bridge.out" "$out/bridge.err"; exit 1; }
 trap - EXIT
+}
+fly_dds
+# Samples that reach the bridge after their tick has run ("N late") break the lockstep's
+# determinism; on a loaded machine a few runs in ten showed some (a known race, docs/bridge.md,
+# "Lockstep"). Such a run is flown once more; a second one with late samples is judged as it is.
+if ! grep -q ", 0 late" "$out/bridge.out"; then
+  echo "late samples in the lockstep: $(grep -o '[0-9]* late' "$out/bridge.out"); flying again once"
+  rm -f "$out"/sitl.json
+  fly_dds
+fi
 cat "$out/sitl.out" "$out/bridge.out"
 python3 - "$out/fly.json" "$out/sitl.json" <<'PY'
 import json, sys
