@@ -6,6 +6,7 @@
 #include <functional>
 #include <limits>
 #include <numeric>
+#include <utility>
 #include <stdexcept>
 
 #include <Eigen/Geometry>
@@ -127,12 +128,24 @@ DragFit fitDrag(const FlightLog& log, double mass_kg, const DragFitOptions& opti
     v_B[i] = (R_WB.transpose() * v).head<2>();
     f_B[i] = mass_kg * (R_WB.transpose() * a).head<2>();
   }
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return log.h_m[a] < log.h_m[b]; });
+  // The samples by height (ties by their index: the same order on every machine). Sorting the
+  // (h, i) pairs themselves keeps the comparisons in cache, unlike an index sort through h; the
+  // body-frame vectors are then gathered once into that order, for contiguous bands.
+  std::vector<std::pair<double, std::size_t>> by_height(n);
+  for (std::size_t i = 0; i < n; ++i) by_height[i] = {log.h_m[i], i};
+  std::sort(by_height.begin(), by_height.end());
   std::vector<double> sorted_h(n);
-  for (std::size_t m = 0; m < n; ++m) sorted_h[m] = log.h_m[order[m]];
+  std::vector<Eigen::Vector2d> sorted_v(n);
+  std::vector<Eigen::Vector2d> sorted_f(n);
+  for (std::size_t m = 0; m < n; ++m) {
+    const std::size_t i = by_height[m].second;
+    sorted_h[m] = by_height[m].first;
+    sorted_v[m] = v_B[i];
+    sorted_f[m] = f_B[i];
+  }
+  by_height = {};
+  v_B = {};
+  f_B = {};
   for (const auto& range : detail::bandRanges(sorted_h, options.height_bands)) {
     // Named copies, not a structured binding: the lambda below captures them, which C++20
     // allows for structured bindings but clang 14 does not implement.
@@ -155,9 +168,8 @@ DragFit fitDrag(const FlightLog& log, double mass_kg, const DragFitOptions& opti
       const auto ls = fitLinear(
           band.count, 1,
           [&](std::size_t m, double* x, double& y, double& w) {
-            const std::size_t i = order[first + m];
-            x[0] = -v_B[i](axis);
-            y = f_B[i](axis);
+            x[0] = -sorted_v[first + m](axis);
+            y = sorted_f[first + m](axis);
             w = 1.0;
             return true;
           },

@@ -124,7 +124,7 @@ AdditionalThrustFit fitThrustWithGroundEffect(const std::vector<double>& S,
   NonlinearProblem problem;
   problem.samples = S.size();
   problem.parameters = 3;
-  problem.residual = [&](std::size_t j, const double* x, double& r, double* g) {
+  const auto residual = [&](std::size_t j, const double* x, double& r, double* g) {
     if (!(x[1] > 0.0)) return false;
     const double d = h2[j] + x[1];
     const double F = x[2] / d;
@@ -137,6 +137,8 @@ AdditionalThrustFit fitThrustWithGroundEffect(const std::vector<double>& S,
     }
     return true;
   };
+  problem.residual = residual;
+  problem.block = blockResidual(residual, problem.parameters);
   problem.scale_floor = scaleFloor(swfz);
   problem.scales = {x0(0), std::max(x0(1), 1e-4), std::max(x0(2), 1e-4)};
   problem.lower = {0.0, 1e-9, 0.0};

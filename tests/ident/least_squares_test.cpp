@@ -4,6 +4,7 @@
 
 #include "geaware/ident/least_squares.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -144,6 +145,71 @@ TEST(LeastSquares, NonlinearRobustFitWithEitherLoss) {
 
 TEST(LeastSquares, RobustSigmaIsTheNormalConsistentMad) {
   EXPECT_NEAR(geaware::ident::robustSigma({1.0, 2.0, 3.0, 4.0, 100.0}), 1.482602218505602, 1e-12);
+}
+
+TEST(LeastSquares, RobustSigmaIsExactlyTheMedianOfAbsoluteDeviations) {
+  // The oracle: the upper median and the MAD by a full std::nth_element. robustSigma selects
+  // from a window bracketed by a sample on large inputs; the value must be the same, exactly,
+  // whatever the values' order and distribution (sorted, ties, outliers, a narrow window miss).
+  const auto oracle = [](std::vector<double> v) {
+    const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+    std::nth_element(v.begin(), mid, v.end());
+    const double median = *mid;
+    for (double& x : v) x = std::abs(x - median);
+    std::nth_element(v.begin(), mid, v.end());
+    return 1.482602218505602 * *mid;
+  };
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_int_distribution<int> small(0, 3);
+  for (const std::size_t n : {1u, 2u, 7u, 8191u, 8192u, 8193u, 100000u, 300001u}) {
+    std::vector<std::vector<double>> cases(5, std::vector<double>(n));
+    for (std::size_t i = 0; i < n; ++i) {
+      cases[0][i] = normal(rng);
+      cases[1][i] = static_cast<double>(i);                        // sorted
+      cases[2][i] = small(rng);                                    // heavy ties
+      cases[3][i] = i % 10 == 0 ? 1e6 * normal(rng) : normal(rng);  // outliers
+      cases[4][i] = i < n / 2 ? 0.0 : 1.0 + static_cast<double>(i);  // half exact zeros
+    }
+    for (std::size_t c = 0; c < cases.size(); ++c) {
+      EXPECT_EQ(geaware::ident::robustSigma(cases[c]), oracle(cases[c])) << "n " << n << ", case " << c;
+    }
+  }
+}
+
+TEST(LeastSquares, ABlockResidualGivesTheSameFitAsTheSampleOne) {
+  // A nonlinear problem solved with its per-sample residual and with the block form of the same
+  // lambda: the same numbers, bit for bit (the block form only saves calls).
+  std::mt19937_64 rng(9);
+  std::normal_distribution<double> noise(0.0, 0.05);
+  std::vector<double> x(20000), y(20000);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    x[i] = 0.1 + 2.0 * static_cast<double>(i) / static_cast<double>(x.size());
+    y[i] = 1.5 * std::exp(-0.7 * x[i]) + noise(rng) + (i % 97 == 0 ? 3.0 : 0.0);
+  }
+  const auto residual = [&](std::size_t i, const double* p, double& r, double* g) {
+    const double e = std::exp(-p[1] * x[i]);
+    r = y[i] - p[0] * e;
+    if (g != nullptr) {
+      g[0] = -e;
+      g[1] = p[0] * x[i] * e;
+    }
+    return true;
+  };
+  NonlinearProblem problem;
+  problem.samples = x.size();
+  problem.parameters = 2;
+  problem.residual = residual;
+  problem.scales = {1.0, 1.0};
+  const Eigen::VectorXd x0 = Eigen::Vector2d(1.0, 1.0);
+  const LeastSquaresFit plain = fitNonlinear(problem, x0);
+  problem.block = geaware::ident::blockResidual(residual, 2);
+  const LeastSquaresFit block = fitNonlinear(problem, x0);
+  ASSERT_TRUE(plain.ok && block.ok);
+  EXPECT_EQ(plain.x, block.x);
+  EXPECT_EQ(plain.covariance, block.covariance);
+  EXPECT_EQ(plain.stats.outliers, block.stats.outliers);
+  EXPECT_GT(plain.stats.outliers, 100u);
 }
 
 }  // namespace

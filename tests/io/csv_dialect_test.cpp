@@ -5,7 +5,11 @@
 #include "geaware/io/csv_reader.hpp"
 #include "geaware/io/log_channels.hpp"
 
+#include <charconv>
+#include <cstring>
 #include <filesystem>
+#include <limits>
+#include <random>
 #include <fstream>
 #include <string>
 
@@ -115,6 +119,54 @@ TEST(CsvFromMemory, ReadsAsAFileDoes) {
   EXPECT_EQ(row[1], 2.0);
   EXPECT_FALSE(r.next(row));
   EXPECT_THROW(geaware::io::CsvReader(std::string_view(""), "empty", o), CsvError);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(CsvNumbers, EveryCellParsesToTheDoubleFromCharsGives) {
+  // The reader parses plain decimals itself (a fast path) and anything else with
+  // std::from_chars: both must give the same double, bit for bit, for every kind of cell.
+  std::mt19937_64 rng(11);
+  std::uniform_int_distribution<int> digits(1, 18);
+  std::uniform_int_distribution<int> digit(0, 9);
+  std::uniform_int_distribution<int> kind(0, 9);
+  std::vector<std::string> cells = {"0", "-0", "0.0", "-0.000", "+1.5", "007.250", "1e3", "-2.5E-3", "123456789012345",
+                                    "1234567890123456", "0.1234567890123456789", "9007199254740993", "4.9e-324",
+                                    "1.7976931348623157e308", "0.30000000000000004"};
+  for (int i = 0; i < 20000; ++i) {
+    std::string c;
+    if (kind(rng) < 3) c.push_back('-');
+    const int n = digits(rng);
+    const int point = std::uniform_int_distribution<int>(0, n)(rng);
+    for (int d = 0; d < n; ++d) {
+      if (d == point && d > 0) c.push_back('.');
+      c.push_back(static_cast<char>('0' + digit(rng)));
+    }
+    if (kind(rng) == 0) {
+      c.push_back('e');
+      c.append(std::to_string(digit(rng) - 4));
+    }
+    cells.push_back(c);
+  }
+  std::string text = "t_s,x\n";
+  for (std::size_t i = 0; i < cells.size(); ++i) text += std::to_string(i) + "," + cells[i] + "\n";
+  CsvReadOptions o;
+  o.columns = {{"t_s"}, {"x", -std::numeric_limits<double>::max(), std::numeric_limits<double>::max()}};
+  geaware::io::CsvReader r(std::string_view(text), "numbers", o);
+  std::vector<double> row(2);
+  for (const auto& c : cells) {
+    ASSERT_TRUE(r.next(row)) << c;
+    const char* first = c.data() + (c.front() == '+' ? 1 : 0);
+    double expected = 0.0;
+    ASSERT_EQ(std::from_chars(first, c.data() + c.size(), expected).ec, std::errc()) << c;
+    std::uint64_t a = 0;
+    std::uint64_t b = 0;
+    std::memcpy(&a, &row[1], 8);
+    std::memcpy(&b, &expected, 8);
+    EXPECT_EQ(a, b) << c << ": " << row[1] << " vs " << expected;
+  }
 }
 
 }  // namespace

@@ -112,10 +112,32 @@ using LinearRow = std::function<bool(std::size_t i, double* row, double& y, doub
 using NonlinearResidual =
     std::function<bool(std::size_t i, const double* x, double& r, double* gradient)>;
 
+/// The residuals r[m] of the samples indices[0 … count−1] at x, and their gradients (row m at
+/// gradients + m·parameters; null: none). Return false when x lies outside the model's domain.
+using NonlinearBlockResidual = std::function<bool(const std::size_t* indices, std::size_t count,
+                                                  const double* x, double* r, double* gradients)>;
+
+/// A block form of `residual` (the same per-sample computation in a loop, e.g. both calling one
+/// lambda), for speed: the solver then makes one call per block of samples instead of one per
+/// sample. The numbers must be those `residual` gives.
+template <class PerSample>
+[[nodiscard]] NonlinearBlockResidual blockResidual(PerSample per_sample, int parameters) {
+  return [per_sample, parameters](const std::size_t* indices, std::size_t count, const double* x, double* r,
+                                  double* gradients) {
+    for (std::size_t m = 0; m < count; ++m) {
+      double* g = gradients != nullptr ? gradients + m * static_cast<std::size_t>(parameters) : nullptr;
+      if (!per_sample(indices[m], x, r[m], g)) return false;
+    }
+    return true;
+  };
+}
+
 struct NonlinearProblem {
   std::size_t samples = 0;
   int parameters = 0;
   NonlinearResidual residual;
+  /// Optional (empty: `residual` per sample): `residual` for a block of samples at once.
+  NonlinearBlockResidual block;
   /// Typical magnitude of each parameter; Ceres works on x/scale so that all are O(1).
   std::vector<double> scales;
   std::vector<double> lower;  ///< bounds, −inf/+inf for none (empty: unbounded)
