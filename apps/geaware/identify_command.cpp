@@ -321,7 +321,9 @@ Runner addIdentifyCommand(CLI::App& app) {
       {"correlations", "the Spearman rank-correlation table of a quadrotor platform log"}};
   for (const auto& [name, help] : kinds) {
     auto* sub = cmd->add_subcommand(name, help);
-    sub->add_option("log", opts->log, "the log (CSV; formats in docs/identification.md)")
+    sub->add_option("log", opts->log,
+                    "the log: CSV, or a .mat, ULog, DataFlash or Crazyflie uSD log whose fields carry the column names "
+                    "or are defined by --column (docs/identification.md)")
         ->required()
         ->check(CLI::ExistingFile);
     addVehicleOption(sub, opts->vehicle,

@@ -2,6 +2,7 @@
 #include "geaware/io/csv_reader.hpp"
 
 #include "geaware/io/input_file.hpp"
+#include "geaware/io/log_channels.hpp"
 #include "text.hpp"
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <fstream>
 #include <optional>
 #include <sstream>
 
@@ -19,6 +21,8 @@ namespace geaware::io {
 namespace detail {
 // csv_columns.cpp: readCsv with column definitions.
 CsvTable readCsvDefined(const std::filesystem::path& file, const CsvReadOptions& options);
+// log_columns.cpp: readCsv on a log that is not CSV (.mat, ULog, DataFlash, Crazyflie uSD).
+CsvTable readLogColumns(const std::filesystem::path& file, const CsvReadOptions& options);
 }  // namespace detail
 
 
@@ -497,6 +501,9 @@ const std::vector<std::string>& CsvReader::units() const noexcept { return impl_
 char CsvReader::delimiter() const noexcept { return impl_->delim; }
 
 CsvTable readCsv(const std::filesystem::path& file, const CsvReadOptions& options) {
+  // A log in another format identify flight reads (a .mat file, say): the same columns from the
+  // fields of one of its topics. A file that cannot be opened is the CSV reader's to report.
+  if (std::ifstream(file).good() && detectLogFormat(file) != LogFormat::kCsv) return detail::readLogColumns(file, options);
   if (!options.definitions.empty()) return detail::readCsvDefined(file, options);
   CsvReader reader(file, options);
   CsvTable table;
