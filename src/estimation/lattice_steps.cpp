@@ -22,52 +22,60 @@ void collectPoints(const model::RangerFrame& frame, const Eigen::Matrix3d& R,
     tx[static_cast<std::size_t>(k)] = -di.x() / di.z();
     ty[static_cast<std::size_t>(k)] = -dj.y() / dj.z();
   }
-  w.n = 0;
-  w.point_of_zone.fill(-1);
-  const Vec3 origin_B = frame.mount_B - rotor_plane_centre_B;
+  // The unit rays of all zones first, in a loop without branches (it vectorises; the same
+  // arithmetic as Eigen's normalized(): x/√((x² + y²) + z²) per component).
+  const int zones = side * side;
+  alignas(32) std::array<double, model::RangerFrame::kMaxZones> dx, dy, dz;
   for (int i = 0; i < side; ++i) {
+    const double a = tx[static_cast<std::size_t>(i)];
     for (int j = 0; j < side; ++j) {
-      const int z = frame.index(i, j);
-      if (!frame.valid[static_cast<std::size_t>(z)]) continue;
-      const double r = frame.range_m[static_cast<std::size_t>(z)];
-      if (!(std::isfinite(r) && r >= min_range_m && r <= max_range_m)) {
-        ++discarded_zones;
-        continue;
-      }
-      const Vec3 d =
-          Vec3(tx[static_cast<std::size_t>(i)], ty[static_cast<std::size_t>(j)], -1.0).normalized();
-      const auto k = static_cast<std::size_t>(w.n);
-      w.X[k] = R * (origin_B + r * d);
-      w.zone[k] = z;
-      w.label[k] = kUnassigned;
-      w.point_of_zone[static_cast<std::size_t>(z)] = w.n;
-      ++w.n;
+      const double b = ty[static_cast<std::size_t>(j)];
+      const double len = std::sqrt((a * a + b * b) + 1.0);
+      const auto k = static_cast<std::size_t>(i * side + j);
+      dx[k] = a / len;
+      dy[k] = b / len;
+      dz[k] = -1.0 / len;
     }
   }
+  // Every zone's point is computed and written to the next free slot; the slot is kept only
+  // when the zone is usable. No branch on the zone's validity, which is as unpredictable as
+  // the ranger's dropouts (an unusable zone's value, even non-finite, is overwritten or lies
+  // beyond w.n, where nothing reads).
+  w.point_of_zone.fill(-1);  // zones beyond side² too
+  int n = 0;
+  int discarded = 0;
+  const Vec3 origin_B = frame.mount_B - rotor_plane_centre_B;
+  for (int k = 0; k < zones; ++k) {
+    const auto zk = static_cast<std::size_t>(k);
+    const bool valid = frame.valid[zk];
+    const double r = frame.range_m[zk];
+    const bool usable = valid && std::isfinite(r) && r >= min_range_m && r <= max_range_m;
+    discarded += valid && !usable ? 1 : 0;
+    const auto slot = static_cast<std::size_t>(n);
+    w.X[slot] = R * (origin_B + r * Vec3(dx[zk], dy[zk], dz[zk]));
+    w.zone[slot] = k;
+    w.label[slot] = kUnassigned;
+    w.point_of_zone[zk] = usable ? n : -1;
+    n += usable ? 1 : 0;
+  }
+  w.n = n;
+  discarded_zones += discarded;
 }
 
-PlaneFit fitPlane(const Points& w, const std::array<bool, kN>& use, double lambda) noexcept {
+PlaneFit fitPlane(const Points& w, const int* idx, int m, double lambda) noexcept {
   PlaneFit f;
-  int m = 0;
-  Vec3 mean = Vec3::Zero();
-  for (int i = 0; i < w.n; ++i) {
-    if (use[static_cast<std::size_t>(i)]) {
-      mean += w.X[static_cast<std::size_t>(i)];
-      ++m;
-    }
-  }
   if (m < 3) return f;
+  Vec3 mean = Vec3::Zero();
+  for (int q = 0; q < m; ++q) mean += w.X[static_cast<std::size_t>(idx[q])];
   mean /= m;
   double sxx = 0.0, sxy = 0.0, syy = 0.0, sxz = 0.0, syz = 0.0;
-  for (int i = 0; i < w.n; ++i) {
-    if (use[static_cast<std::size_t>(i)]) {
-      const Vec3 d = w.X[static_cast<std::size_t>(i)] - mean;
-      sxx += d.x() * d.x();
-      sxy += d.x() * d.y();
-      syy += d.y() * d.y();
-      sxz += d.x() * d.z();
-      syz += d.y() * d.z();
-    }
+  for (int q = 0; q < m; ++q) {
+    const Vec3 d = w.X[static_cast<std::size_t>(idx[q])] - mean;
+    sxx += d.x() * d.x();
+    sxy += d.x() * d.y();
+    syy += d.y() * d.y();
+    sxz += d.x() * d.z();
+    syz += d.y() * d.z();
   }
   // Horizontal spread: eigenvalues of [[sxx, sxy], [sxy, syy]].
   const double half_tr = 0.5 * (sxx + syy);
@@ -84,27 +92,46 @@ PlaneFit fitPlane(const Points& w, const std::array<bool, kN>& use, double lambd
   f.n = g / gn;
   f.c = z0 / gn;
   double ss = 0.0;
-  for (int i = 0; i < w.n; ++i) {
-    if (use[static_cast<std::size_t>(i)]) {
-      const double r = f.n.dot(w.X[static_cast<std::size_t>(i)]) - f.c;
-      ss += r * r;
-    }
+  for (int q = 0; q < m; ++q) {
+    const double r = f.n.dot(w.X[static_cast<std::size_t>(idx[q])]) - f.c;
+    ss += r * r;
   }
   f.rms = std::sqrt(ss / m);
   f.ok = f.n.allFinite() && std::isfinite(f.c);
   return f;
 }
 
+PlaneFit fitPlane(const Points& w, const std::array<bool, kN>& use, double lambda) noexcept {
+  std::array<int, kN> idx;
+  int m = 0;
+  for (int i = 0; i < w.n; ++i) {
+    idx[static_cast<std::size_t>(m)] = i;
+    m += use[static_cast<std::size_t>(i)] ? 1 : 0;
+  }
+  return fitPlane(w, idx.data(), m, lambda);
+}
+
 int markInliers(Points& w, const Eigen::Vector3d& n, double c, double threshold_m) noexcept {
   int count = 0;
   for (int i = 0; i < w.n; ++i) {
     const auto k = static_cast<std::size_t>(i);
-    w.inlier[k] = w.label[k] == kUnassigned && std::abs(n.dot(w.X[k]) - c) <= threshold_m;
-    count += w.inlier[k] ? 1 : 0;
+    const bool in = w.label[k] == kUnassigned && std::abs(n.dot(w.X[k]) - c) <= threshold_m;
+    w.inlier[k] = in;
+    w.sel[static_cast<std::size_t>(count)] = i;
+    count += in ? 1 : 0;
   }
+  w.n_sel = count;
   return count;
 }
 
+// Two builds of this function, chosen once at load time by the processor (GNU ifunc): the
+// scoring's four partial sums are one AVX2 register where the processor has it, two SSE2
+// registers otherwise. The same IEEE operations in the same order either way (AVX2 without FMA:
+// nothing is contracted), so the same hypothesis wins, bit for bit.
+#if defined(__GNUC__) && defined(__x86_64__) && defined(__gnu_linux__) && \
+    !defined(__SANITIZE_ADDRESS__) && !defined(GEAWARE_NO_TARGET_CLONES)
+[[gnu::target_clones("avx2", "default")]]
+#endif
 Hypothesis bestHypothesis(const Points& w, int m, SplitMix64& rng, int iterations,
                           double cos_tilt, double threshold_m) noexcept {
   Hypothesis h;
@@ -114,7 +141,7 @@ Hypothesis bestHypothesis(const Points& w, int m, SplitMix64& rng, int iteration
   // streams through memory instead of gathering through w.pool.
   constexpr int kLanes = 4;      // independent partial sums: the adds do not wait on each other
   constexpr int kBlock = 32;     // points scored between two early-exit checks
-  alignas(32) std::array<double, kN + kLanes> px{}, py{}, pz{};
+  alignas(32) std::array<double, kN + kLanes> px, py, pz;  // [0, m) is filled and read
   for (int q = 0; q < m; ++q) {
     const Vec3& X = w.X[static_cast<std::size_t>(w.pool[static_cast<std::size_t>(q)])];
     px[static_cast<std::size_t>(q)] = X.x();
@@ -197,38 +224,58 @@ int findRoot(std::array<int, kN>& parent, int i) noexcept {
 
 int keepZonePatches(Points& w, int side, int label, int min_component_zones) noexcept {
   // Connected components of the inlier zones in one raster scan (8-connectivity: each inlier
-  // joins its inlier neighbours already scanned, west, north-west, north and north-east), then
-  // the component sizes. Same patches as a flood fill, without a queue or a second visit.
+  // joins its inlier neighbours already scanned, west, north-west, north and north-east, in a
+  // union-find forest whose parents always point to earlier points), then the component sizes.
+  // Same patches as a flood fill, without a queue or a second visit.
   auto& parent = w.parent;
   auto& size = w.component_size;
   for (int i = 0; i < w.n; ++i) {
     parent[static_cast<std::size_t>(i)] = i;
     size[static_cast<std::size_t>(i)] = 0;
   }
-  // The inlier point at zone (zi, zj), or −1.
-  auto inlierAt = [&](int zi, int zj) {
-    if (zi < 0 || zj < 0 || zj >= side) return -1;
-    const int p = w.point_of_zone[static_cast<std::size_t>(zi) * static_cast<std::size_t>(side) +
-                                  static_cast<std::size_t>(zj)];
-    return p >= 0 && w.inlier[static_cast<std::size_t>(p)] ? p : -1;
+  // The inlier point of each zone, or −1, on a grid with a border of −1 above, left and right,
+  // so that the four scanned neighbours are plain loads.
+  constexpr int kMaxW = model::RangerFrame::kMaxSide + 2;
+  std::array<int, (model::RangerFrame::kMaxSide + 1) * kMaxW> cell;
+  const int W = side + 2;
+  std::fill_n(cell.begin(), static_cast<std::size_t>(W), -1);
+  for (int zi = 0; zi < side; ++zi) {
+    int* row = cell.data() + static_cast<std::ptrdiff_t>(zi + 1) * W;
+    row[0] = -1;
+    row[side + 1] = -1;
+    for (int zj = 0; zj < side; ++zj) {
+      const int p = w.point_of_zone[static_cast<std::size_t>(zi * side + zj)];
+      const int safe = p < 0 ? 0 : p;
+      row[zj + 1] = p >= 0 && w.inlier[static_cast<std::size_t>(safe)] ? p : -1;
+    }
+  }
+  // The scan decides from the neighbours' geometry which unions can be new (Wu, Otoo & Suzuki
+  // 2009): a north inlier is adjacent to all three others, so joining it is enough; else a
+  // north-east one may bridge two patches (with the west or north-west, adjacent to each
+  // other); else the north-west or the west alone.
+  const auto unite = [&parent](int a, int b) {
+    const int ra = findRoot(parent, a), rb = findRoot(parent, b);
+    const int lo = std::min(ra, rb);
+    parent[static_cast<std::size_t>(std::max(ra, rb))] = lo;
+    return lo;
   };
   for (int zi = 0; zi < side; ++zi) {
-    for (int zj = 0; zj < side; ++zj) {
-      const int i = inlierAt(zi, zj);
+    const int* row = cell.data() + static_cast<std::ptrdiff_t>(zi + 1) * W;
+    const int* above = row - W;
+    for (int zj = 1; zj <= side; ++zj) {
+      const int i = row[zj];
       if (i < 0) continue;
-      // i joins the patch of its first inlier neighbour; patches it bridges are merged into
-      // the one with the smaller root.
+      const int n = above[zj], ne = above[zj + 1], nw = above[zj - 1], west = row[zj - 1];
       int root = i;
-      for (const int nb : {inlierAt(zi, zj - 1), inlierAt(zi - 1, zj - 1), inlierAt(zi - 1, zj),
-                           inlierAt(zi - 1, zj + 1)}) {
-        if (nb < 0) continue;
-        const int r = findRoot(parent, nb);
-        if (root == i) {
-          root = r;
-        } else if (r != root) {
-          parent[static_cast<std::size_t>(std::max(r, root))] = std::min(r, root);
-          root = std::min(r, root);
-        }
+      if (n >= 0) {
+        root = parent[static_cast<std::size_t>(n)];
+      } else if (ne >= 0) {
+        const int other = nw >= 0 ? nw : west;
+        root = other >= 0 ? unite(ne, other) : parent[static_cast<std::size_t>(ne)];
+      } else if (nw >= 0) {
+        root = parent[static_cast<std::size_t>(nw)];
+      } else if (west >= 0) {
+        root = parent[static_cast<std::size_t>(west)];
       }
       parent[static_cast<std::size_t>(i)] = root;
     }
@@ -246,14 +293,17 @@ int keepZonePatches(Points& w, int side, int label, int min_component_zones) noe
     if (!w.inlier[k]) continue;
     const bool keep = size[static_cast<std::size_t>(parent[k])] >= min_component_zones;
     w.label[k] = keep ? label : kDiscarded;
+    w.sel[static_cast<std::size_t>(support)] = i;
     support += keep ? 1 : 0;
   }
+  w.n_sel = support;
   return support;
 }
 
 void relabel(Points& w, int from, int to) noexcept {
   for (int i = 0; i < w.n; ++i) {
-    if (w.label[static_cast<std::size_t>(i)] == from) w.label[static_cast<std::size_t>(i)] = to;
+    auto& l = w.label[static_cast<std::size_t>(i)];
+    l = l == from ? to : l;
   }
 }
 
@@ -266,8 +316,8 @@ SurfaceResult extractSurface(Points& w, int s, int slot, int side, const Lattice
       (p.range_noise_std_m * p.range_noise_std_m) / (p.ground_slope_prior * p.ground_slope_prior);
   int m = 0;
   for (int i = 0; i < w.n; ++i) {
-    if (w.label[static_cast<std::size_t>(i)] == kUnassigned)
-      w.pool[static_cast<std::size_t>(m++)] = i;
+    w.pool[static_cast<std::size_t>(m)] = i;
+    m += w.label[static_cast<std::size_t>(i)] == kUnassigned ? 1 : 0;
   }
   if (m < p.min_inliers) return out;  // kStop
 
@@ -278,13 +328,27 @@ SurfaceResult extractSurface(Points& w, int s, int slot, int side, const Lattice
     return out;  // kStop
   }
 
-  // 2b. Least squares on the inliers, twice (the refit can gain or lose border points).
+  // 2b. Least squares on the inliers, twice (the refit can gain or lose border points). A fit
+  // is a function of its point list alone: where a list equals the one fitted last, that fit is
+  // reused instead of recomputed (the usual case on clean ground: all three lists agree).
   PlaneFit fit;
+  std::array<int, kN> fitted;  // the list `fit` was computed on: fitted[0..n_fitted)
+  int n_fitted = -1;
+  const auto sameAsFitted = [&w, &fitted, &n_fitted] {
+    return w.n_sel == n_fitted &&
+           std::equal(w.sel.begin(), w.sel.begin() + w.n_sel, fitted.begin());
+  };
+  const auto fitSelection = [&] {
+    if (sameAsFitted()) return;
+    fit = fitPlane(w, w.sel.data(), w.n_sel, lambda);
+    std::copy(w.sel.begin(), w.sel.begin() + w.n_sel, fitted.begin());
+    n_fitted = w.n_sel;
+  };
   Vec3 n = h.n;
   double c = h.c;
   for (int pass = 0; pass < 2; ++pass) {
     markInliers(w, n, c, thr);
-    fit = fitPlane(w, w.inlier, lambda);
+    fitSelection();
     if (!fit.ok) break;
     n = fit.n;
     c = fit.c;
@@ -304,10 +368,9 @@ SurfaceResult extractSurface(Points& w, int s, int slot, int side, const Lattice
     return out;
   }
 
-  // 2d. Final least squares on the support only.
-  for (int i = 0; i < w.n; ++i)
-    w.inlier[static_cast<std::size_t>(i)] = w.label[static_cast<std::size_t>(i)] == s;
-  const PlaneFit final_fit = fitPlane(w, w.inlier, lambda);
+  // 2d. Final least squares on the support only (listed in w.sel by keepZonePatches).
+  fitSelection();
+  const PlaneFit final_fit = fit;
   if (!final_fit.ok) {
     out.degenerate = true;
     relabel(w, s, kDiscarded);
@@ -328,8 +391,8 @@ int surfaceUnder(const Points& w, const Eigen::Vector3d& P, double& dist) noexce
   double best_d2 = std::numeric_limits<double>::infinity();
   for (int i = 0; i < w.n; ++i) {
     const auto k = static_cast<std::size_t>(i);
-    if (w.label[k] < 0) continue;
-    const double d2 = (w.X[k].head<2>() - P.head<2>()).squaredNorm();
+    const double d2 = w.label[k] < 0 ? std::numeric_limits<double>::infinity()
+                                     : (w.X[k].head<2>() - P.head<2>()).squaredNorm();
     if (d2 < best_d2) {
       best_d2 = d2;
       owner = w.label[k];

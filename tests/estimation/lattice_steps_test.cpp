@@ -4,6 +4,8 @@
 #include "geaware/estimation/lattice_steps.hpp"
 
 #include <cmath>
+#include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -93,6 +95,109 @@ TEST(LatticeSteps, SurfaceUnderIsTheOwnerOfTheNearestSupportingZone) {
   EXPECT_EQ(surfaceUnder(w, Vector3d(1.4, -1.4, 0.0), d), 1);
   Points empty;
   EXPECT_EQ(surfaceUnder(empty, Vector3d::Zero(), d), -1);
+}
+
+/// Oracle: the 8-connected patches of the inlier zones by breadth-first flood fill, and the
+/// label each inlier gets under the support rule.
+std::vector<int> floodFillLabels(const Points& w, int side, int label, int min_zones) {
+  std::vector<int> out(static_cast<std::size_t>(w.n), kUnassigned);
+  std::vector<int> patch(static_cast<std::size_t>(side * side), -1);
+  auto inlierAt = [&](int zi, int zj) {
+    if (zi < 0 || zj < 0 || zi >= side || zj >= side) return -1;
+    const int p = w.point_of_zone[static_cast<std::size_t>(zi * side + zj)];
+    return p >= 0 && w.inlier[static_cast<std::size_t>(p)] ? p : -1;
+  };
+  for (int z = 0; z < side * side; ++z) {
+    if (inlierAt(z / side, z % side) < 0 || patch[static_cast<std::size_t>(z)] >= 0) continue;
+    std::vector<int> members{z};
+    patch[static_cast<std::size_t>(z)] = z;
+    for (std::size_t q = 0; q < members.size(); ++q) {
+      const int zi = members[q] / side, zj = members[q] % side;
+      for (int di = -1; di <= 1; ++di) {
+        for (int dj = -1; dj <= 1; ++dj) {
+          const int ni = zi + di, nj = zj + dj;
+          if (inlierAt(ni, nj) < 0 || patch[static_cast<std::size_t>(ni * side + nj)] >= 0) continue;
+          patch[static_cast<std::size_t>(ni * side + nj)] = z;
+          members.push_back(ni * side + nj);
+        }
+      }
+    }
+    const bool keep = static_cast<int>(members.size()) >= min_zones;
+    for (const int m : members) {
+      out[static_cast<std::size_t>(w.point_of_zone[static_cast<std::size_t>(m)])] =
+          keep ? label : kDiscarded;
+    }
+  }
+  return out;
+}
+
+TEST(LatticeSteps, ZonePatchesAgreeWithAFloodFillOnRandomMasks) {
+  // Random inlier masks of every density on grids of several sides, some zones unusable: the
+  // raster scan's union-find (with its shortcuts for the north and north-east neighbours) must
+  // label exactly the patches a flood fill finds, and list the support in increasing order.
+  std::mt19937_64 rng(5);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const int side = 1 + trial % 16;
+    const double density = (trial % 10) / 9.0;
+    std::bernoulli_distribution in(density), usable(0.9);
+    Points w;
+    w.point_of_zone.fill(-1);
+    w.n = 0;
+    for (int z = 0; z < side * side; ++z) {
+      if (!usable(rng)) continue;
+      const auto k = static_cast<std::size_t>(w.n);
+      w.X[k] = Vector3d::Zero();
+      w.zone[k] = z;
+      w.label[k] = kUnassigned;
+      w.inlier[k] = in(rng);
+      w.point_of_zone[static_cast<std::size_t>(z)] = w.n++;
+    }
+    const int min_zones = 1 + trial % 7;
+    const std::vector<int> expected = floodFillLabels(w, side, 3, min_zones);
+    const int support = keepZonePatches(w, side, 3, min_zones);
+    int kept = 0;
+    for (int i = 0; i < w.n; ++i) {
+      ASSERT_EQ(w.label[static_cast<std::size_t>(i)], expected[static_cast<std::size_t>(i)])
+          << "trial " << trial << ", side " << side << ", point " << i;
+      if (expected[static_cast<std::size_t>(i)] == 3) {
+        ASSERT_EQ(w.sel[static_cast<std::size_t>(kept)], i);
+        ++kept;
+      }
+    }
+    ASSERT_EQ(support, kept);
+    ASSERT_EQ(w.n_sel, kept);
+  }
+}
+
+TEST(LatticeSteps, FitPlaneOnAListEqualsTheFlaggedFitBitForBit) {
+  Points w = grid(12, -0.4, 0.05, -0.02);
+  std::mt19937_64 rng(9);
+  std::normal_distribution<double> noise(0.0, 0.01);
+  for (int i = 0; i < w.n; ++i) w.X[static_cast<std::size_t>(i)].z() += noise(rng);
+  std::bernoulli_distribution pick(0.7);
+  std::array<bool, kN> use{};
+  std::array<int, kN> list{};
+  int m = 0;
+  for (int i = 0; i < w.n; ++i) {
+    use[static_cast<std::size_t>(i)] = pick(rng);
+    if (use[static_cast<std::size_t>(i)]) list[static_cast<std::size_t>(m++)] = i;
+  }
+  const PlaneFit a = fitPlane(w, use, 1e-3);
+  const PlaneFit b = fitPlane(w, list.data(), m, 1e-3);
+  ASSERT_TRUE(a.ok);
+  EXPECT_EQ(a.n, b.n);
+  EXPECT_EQ(a.c, b.c);
+  EXPECT_EQ(a.rms, b.rms);
+  // markInliers lists exactly the flagged points, in order.
+  const int count = markInliers(w, a.n, a.c, 0.015);
+  ASSERT_EQ(count, w.n_sel);
+  int q = 0;
+  for (int i = 0; i < w.n; ++i) {
+    if (w.inlier[static_cast<std::size_t>(i)]) {
+      EXPECT_EQ(w.sel[static_cast<std::size_t>(q++)], i);
+    }
+  }
+  EXPECT_EQ(q, count);
 }
 
 }  // namespace

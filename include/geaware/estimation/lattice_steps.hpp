@@ -46,7 +46,9 @@ struct Points {
   std::array<int, kN> parent;         // union-find parents of the zone patches
   std::array<int, kN> component_size; // zones per patch, at each patch's root
   std::array<bool, kN> inlier;        // per point, for the current surface
+  std::array<int, kN> sel;            // the selected points in increasing order (see n_sel)
   int n = 0;
+  int n_sel = 0;                      // markInliers: the inliers; keepZonePatches: the support
 };
 
 struct PlaneFit {
@@ -72,7 +74,12 @@ void collectPoints(const model::RangerFrame& frame, const Eigen::Matrix3d& R,
 /// (the smaller horizontal spread below 1 % of the larger), which no prior should paper over.
 PlaneFit fitPlane(const Points& w, const std::array<bool, kN>& use, double lambda) noexcept;
 
-/// Flags the unassigned points within `threshold_m` of n·X = c; returns how many.
+/// The same fit on the points w.X[idx[0..m)], idx increasing (the same sums in the same order as
+/// the flagged form, without a branch per point).
+PlaneFit fitPlane(const Points& w, const int* idx, int m, double lambda) noexcept;
+
+/// Flags the unassigned points within `threshold_m` of n·X = c and lists them in
+/// w.sel[0..w.n_sel); returns how many.
 int markInliers(Points& w, const Eigen::Vector3d& n, double c, double threshold_m) noexcept;
 
 /// Best plane hypothesis of one RANSAC round over the `m` pooled points.
@@ -92,7 +99,8 @@ Hypothesis bestHypothesis(const Points& w, int m, SplitMix64& rng, int iteration
                           double cos_tilt, double threshold_m) noexcept;
 
 /// Step 2c: labels the inliers in 8-connected zone patches of at least `min_component_zones`
-/// with `label`, the others kDiscarded; returns the number of zones kept.
+/// with `label`, the others kDiscarded, and lists the kept ones in w.sel[0..w.n_sel); returns
+/// the number of zones kept.
 int keepZonePatches(Points& w, int side, int label, int min_component_zones) noexcept;
 
 /// Relabels every point labelled `from` as `to`.
