@@ -6,6 +6,10 @@
 // executable. Replacements only count and forward; everything else behaves as usual.
 //   operator new/new[] catch standard containers; Eigen's dynamic storage calls std::malloc
 //   directly, so on glibc malloc itself is interposed too (forwarding to __libc_malloc).
+// Under AddressSanitizer nothing is replaced: the sanitizer's allocator owns malloc and new (a
+// malloc of ours would hand it blocks it never allocated, and it runs before the sanitizer's
+// shadow memory exists: the executables crashed at start-up), and its allocation hook counts
+// every allocation instead, new and malloc alike.
 
 #include <atomic>
 #include <cstddef>
@@ -23,6 +27,28 @@ inline std::atomic<long> g_allocation_count{0};
 
 }  // namespace geaware_test
 
+#if defined(__SANITIZE_ADDRESS__)
+#define GEAWARE_TEST_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define GEAWARE_TEST_ASAN 1
+#endif
+#endif
+
+#if defined(GEAWARE_TEST_ASAN)
+// sanitizer/allocator_interface.h (not shipped with GCC 12's headers; the runtime has it).
+extern "C" int __sanitizer_install_malloc_and_free_hooks(  // NOLINT(bugprone-reserved-identifier)
+    void (*malloc_hook)(const volatile void*, std::size_t), void (*free_hook)(const volatile void*));
+
+namespace geaware_test {
+inline void countAllocation(const volatile void*, std::size_t) noexcept {
+  g_allocation_count.fetch_add(1, std::memory_order_relaxed);
+}
+inline void ignoreFree(const volatile void*) noexcept {}
+inline const int g_allocation_hook_installed =
+    __sanitizer_install_malloc_and_free_hooks(&countAllocation, &ignoreFree);
+}  // namespace geaware_test
+#else
 #if defined(__GLIBC__)
 extern "C" void* __libc_malloc(std::size_t n);     // NOLINT(bugprone-reserved-identifier): glibc
 extern "C" void* malloc(std::size_t n) noexcept {  // NOLINT(readability-inconsistent-*)
@@ -45,3 +71,4 @@ void* operator new[](std::size_t n) { return operator new(n); }
 void operator delete[](void* p) noexcept { ::operator delete(p); }
 void operator delete(void* p, std::size_t) noexcept { ::operator delete(p); }
 void operator delete[](void* p, std::size_t) noexcept { ::operator delete(p); }
+#endif  // GEAWARE_TEST_ASAN
