@@ -390,7 +390,8 @@ TEST(AcceptanceChecks, TheLowestComparisonRowIsAFinishedOne) {
   CampaignResult r;
   // Exp 2 has the lowest mean but struck: the comparison is against exp 3, the lowest finished.
   r.experiments = {row(1, 10.0, 0), row(2, 1.0, 2), row(3, 6.0, 0), row(4, 3.0, 0)};
-  const auto& z = named(acceptanceChecks(r), "RMSE Z: exp 4 / lowest of exps 1–3 (exp 3)");
+  // A copy: named() returns a reference into its list, here a temporary.
+  const auto z = named(acceptanceChecks(r), "RMSE Z: exp 4 / lowest of exps 1–3 (exp 3)");
   EXPECT_TRUE(z.pass);
   EXPECT_DOUBLE_EQ(z.value, 0.5);
 }
