@@ -22,4 +22,9 @@ inline std::string excerpt(std::string_view s, std::size_t max_chars = 80) {
   return std::string(s.substr(0, max_chars)) + "…";
 }
 
+/// A plain decimal [-]digits[.digits] of at most 15 digits, parsed to the same double
+/// std::from_chars gives (decimal_text.cpp); false for anything else, which from_chars then
+/// parses or refuses.
+bool parsePlainDecimal(const char* first, const char* last, double& out);
+
 }  // namespace geaware::io::detail
