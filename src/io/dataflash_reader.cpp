@@ -26,6 +26,7 @@
 
 #include "byte_source.hpp"
 #include "geaware/io/log_channels.hpp"
+#include "geaware/model/field_check.hpp"
 
 namespace geaware::io {
 namespace {
@@ -283,20 +284,26 @@ class DataFlashParser {
       out = detail::loadAsDouble(p + f->offset, f->fc.type);
       return true;
     };
+    // A message id or a unit/multiplier letter is one byte; any other value (a corrupt or hostile
+    // log can hold 8e18 or NaN there) names nothing, and converting it to an integer would be
+    // undefined behaviour.
+    const auto byteValue = [](double x) { return x >= 0.0 && x < 256.0 && std::floor(x) == x; };
     double v = 0.0;
     if (t.name == "FMTU" && number("FmtType", v)) {
-      const auto it = types_.find(static_cast<unsigned>(v));
+      const auto it = byteValue(v) ? types_.find(static_cast<unsigned>(v)) : types_.end();
       if (it == types_.end()) {
-        warn(at, "FMTU for type " + std::to_string(static_cast<unsigned>(v)) + ", which no FMT defines");
+        warn(at, "FMTU for type " + model::formatValue(v) + ", which no FMT defines");
         return;
       }
       it->second.unit_ids = text("UnitIds");
       it->second.mult_ids = text("MultIds");
     } else if (t.name == "UNIT" && number("Id", v)) {
-      units_[static_cast<char>(static_cast<int>(v))] = text("Label");
+      if (!byteValue(v)) return warn(at, "UNIT with id " + model::formatValue(v) + " (expected one character): ignored");
+      units_[static_cast<char>(static_cast<unsigned char>(v))] = text("Label");
     } else if (t.name == "MULT" && number("Id", v)) {
+      if (!byteValue(v)) return warn(at, "MULT with id " + model::formatValue(v) + " (expected one character): ignored");
       double m = 0.0;
-      if (number("Mult", m)) mults_[static_cast<char>(static_cast<int>(v))] = m;
+      if (number("Mult", m)) mults_[static_cast<char>(static_cast<unsigned char>(v))] = m;
     } else if (t.name == "PARM" && number("Value", v)) {
       log_.parameters[text("Name")] = v;
     } else if (t.name == "MSG") {

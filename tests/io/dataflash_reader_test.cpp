@@ -205,6 +205,45 @@ TEST(DataFlashReader, AnInstanceFieldWithManyValuesIsNotSplit) {
   EXPECT_NE(log.warnings[0].find("40 distinct instance numbers"), std::string::npos) << log.warnings[0];
 }
 
+// A log may declare UNIT, MULT and FMTU with any format: a hostile or corrupt one puts an 8-byte
+// float or integer where ArduPilot puts one byte (the fuzz target found Id = 8.3e18, whose
+// conversion to char was undefined behaviour). Such ids name nothing: each message is a warning
+// and the rest of the log is read as before.
+TEST(DataFlashReader, MetadataIdsOutsideOneByteAreWarningsNotConversions) {
+  Writer w;
+  w.fmt(128, 89, "FMT", "BBnNZ", "Type,Length,Name,Format,Columns");
+  w.fmt(129, 3 + 8 + 8 + 64, "UNIT", "QdZ", "TimeUS,Id,Label");
+  w.fmt(130, 3 + 8 + 8 + 8, "MULT", "QQd", "TimeUS,Id,Mult");
+  w.fmt(131, 3 + 8 + 8 + 16 + 16, "FMTU", "QdNN", "TimeUS,FmtType,UnitIds,MultIds");
+  w.fmt(136, 3 + 8 + 4, "ALT", "Qf", "TimeUS,Alt");
+  w.head(129).put<std::uint64_t>(0).put(8.28662e18).text("huge", 64);
+  w.head(129).put<std::uint64_t>(0).put(std::nan("")).text("nan", 64);
+  w.head(129).put<std::uint64_t>(0).put(-1.0).text("negative", 64);
+  w.head(129).put<std::uint64_t>(0).put(static_cast<double>('m')).text("m", 64);
+  w.head(130).put<std::uint64_t>(0).put(std::uint64_t{1} << 63).put(1e-3);
+  w.head(130).put<std::uint64_t>(0).put(std::uint64_t{'C'}).put(1e-3);
+  w.head(131).put<std::uint64_t>(0).put(1e300).text("-m", 16).text("-C", 16);
+  w.head(131).put<std::uint64_t>(0).put(136.5).text("-m", 16).text("-C", 16);
+  w.head(131).put<std::uint64_t>(0).put(136.0).text("-m", 16).text("-C", 16);
+  w.head(136).put<std::uint64_t>(1000).put(2500.0f);
+  const LogData log = readDataFlash(w.bytes, "ids.bin");
+  ASSERT_EQ(log.warnings.size(), 6u);
+  for (const std::string expected :
+       {"UNIT with id 8.28662e+18", "UNIT with id nan", "UNIT with id -1", "MULT with id 9.22337204e+18",
+        "FMTU for type 1e+300", "FMTU for type 136.5"}) {
+    bool found = false;
+    for (const auto& message : log.warnings) found = found || message.find(expected) != std::string::npos;
+    EXPECT_TRUE(found) << "no warning containing '" << expected << "'";
+  }
+  const auto* alt = log.topic("ALT");
+  ASSERT_NE(alt, nullptr);
+  ASSERT_EQ(alt->size(), 1u);
+  const auto* metres = alt->channel("Alt");
+  ASSERT_NE(metres, nullptr);
+  EXPECT_EQ(metres->unit, "m");
+  EXPECT_DOUBLE_EQ(metres->values[0], 2.5);  // 2500 with multiplier C = 1e-3
+}
+
 // The whole chain on a log laid out as ArduPilot writes these messages (ATT's centidegree 'c'/'C'
 // fields with multiplier B, ESC's 'e' RPM, one ESC instance per motor, FMTU instance fields):
 // the reader splits and scales, the ardupilot map converts NED/FRD Euler angles to ENU/FLU.
