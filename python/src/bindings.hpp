@@ -9,8 +9,13 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <optional>
 #include <string>
+
+#include "geaware/experiments/flight.hpp"
 
 namespace geaware::python {
 
@@ -27,6 +32,24 @@ void bindController(py::module_& m);
 void bindFlight(py::module_& m);
 /// Identification on arrays or log files (ident_bindings.cpp).
 void bindIdentify(py::module_& m);
+/// The stepped simulator, one vehicle or a batch (sim_bindings.cpp).
+void bindSim(py::module_& m);
+
+/// The arguments of geaware.fly that set up a flight (the stepped simulators take them too).
+struct FlyArgs {
+  std::optional<std::string> scenario, vehicle, truth, trajectory, controller, controller_params,
+      out;
+  double height_m = std::nan(""), speed_mps = std::nan(""), extent_x_m = 1.5, extent_y_m = 0.8;
+  int laps = 1;
+  double from_height_m = 1.5;
+  std::optional<std::uint64_t> seed;
+  bool no_turbulence = false;
+  double start_hover_s = 1.0;
+};
+
+/// The scenario `geaware fly` would fly with these arguments (flight_bindings.cpp); ValueError
+/// or geaware.ConfigError naming what is wrong.
+experiments::FlightScenario scenarioOf(const FlyArgs& a);
 
 /// A new float64 array of the given shape.
 DoubleArray newArray(std::initializer_list<py::ssize_t> shape);

@@ -134,16 +134,7 @@ class ArrayLog final : public experiments::FlightObserver {
   double mass_kg_;
 };
 
-struct FlyArgs {
-  std::optional<std::string> scenario, vehicle, truth, trajectory, controller, controller_params,
-      out;
-  double height_m = std::nan(""), speed_mps = std::nan(""), extent_x_m = 1.5, extent_y_m = 0.8;
-  int laps = 1;
-  double from_height_m = 1.5;
-  std::optional<std::uint64_t> seed;
-  bool no_turbulence = false;
-  double start_hover_s = 1.0;
-};
+}  // namespace
 
 experiments::FlightScenario scenarioOf(const FlyArgs& a) {
   experiments::FlightScenario s;
@@ -194,6 +185,8 @@ experiments::FlightScenario scenarioOf(const FlyArgs& a) {
   }
   return s;
 }
+
+namespace {
 
 /// The arrays as a dict of column views into one (rows × columns) array that owns the values.
 py::dict arraysOf(std::vector<double>&& values) {

@@ -66,4 +66,5 @@ PYBIND11_MODULE(_geaware, m) {
   geaware::python::bindController(m);
   geaware::python::bindFlight(m);
   geaware::python::bindIdentify(m);
+  geaware::python::bindSim(m);
 }

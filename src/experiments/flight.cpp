@@ -16,8 +16,6 @@
 #include "geaware/model/rotation.hpp"
 #include "geaware/model/units.hpp"
 #include "geaware/model/vehicle_model.hpp"
-#include "geaware/sim/rotor_aerodynamics.hpp"
-#include "geaware/sim/rotor_turbulence.hpp"
 #include "geaware/sim/terrains.hpp"
 
 namespace geaware::experiments {
@@ -25,26 +23,10 @@ namespace {
 
 using detail::decimationOf;
 using detail::heightAbove;
+using detail::initialState;
+using detail::plantConfigOf;
 using detail::terrainOf;
-
-/// Rotor speed at which the truth hovers level at its initial pose (with its own ground
-/// effect): the thrust is exactly quadratic in a common rotor speed at rest, so one
-/// evaluation of the truth aerodynamics at a reference speed gives it.
-double truthHoverSpeed(const sim::TruthParams& truth, const sim::Terrain& terrain,
-                       const Eigen::Vector3d& p_W, const Eigen::Quaterniond& q_WB) {
-  const sim::RotorGeometry geometry = truth.rotorGeometry();
-  const sim::RotorAerodynamics aero(geometry, truth.aero);
-  const Eigen::Matrix3d R = q_WB.toRotationMatrix();
-  const Eigen::Vector3d p_com = p_W + R * truth.cog_offset_B;
-  const sim::RotorSurroundings around =
-      sim::rotorSurroundings(&terrain, p_com, R, geometry.position_B);
-  constexpr double kRef = 1000.0;  // [rpm]
-  const sim::RotorAeroOutput out =
-      aero.compute({kRef, kRef, kRef, kRef}, R, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
-                   aero.flightFactors(around.ground_distance_m));  // the in-flight cushion
-  const double thrust = out.wrench.force_B.z();
-  return kRef * std::sqrt(truth.mass_kg * truth.gravity_mps2 / thrust);
-}
+using detail::truthOf;
 
 }  // namespace
 
@@ -79,25 +61,6 @@ const char* controllerFlagName(int bit) noexcept {
 
 namespace {
 
-/// The truth's starting state: hovering level (at the reference's yaw) at the first point of
-/// the trajectory, rotors at the speed that carries the truth there.
-sim::PlantState initialState(const sim::TruthParams& truth, const sim::Terrain& terrain,
-                             const traj::Trajectory& trajectory) {
-  const traj::FlatOutput first = trajectory.sample(0.0);
-  sim::PlantState x0;
-  x0.p_W = first.p_W;
-  x0.q_WB = Eigen::Quaterniond(Eigen::AngleAxisd(first.yaw_rad, Eigen::Vector3d::UnitZ()));
-  const double n0 = truthHoverSpeed(truth, terrain, x0.p_W, x0.q_WB);
-  x0.n_rpm = {n0, n0, n0, n0};
-  return x0;
-}
-
-sim::TruthParams truthOf(const FlightScenario& s) {
-  sim::TruthParams truth = s.truth ? *s.truth : sim::fromNominal(s.vehicle);
-  if (s.mismatch) truth = sim::perturbed(truth, *s.mismatch, s.seed);
-  return truth;
-}
-
 /// The disturbance observer runs on the controller's ticks with the controller's filter, so its
 /// filtered quantities are delayed like the controller's own (paper: one "(·)_f").
 estimation::DisturbanceObserverParams observerParamsOf(const control::ControllerParams& c) {
@@ -105,12 +68,6 @@ estimation::DisturbanceObserverParams observerParamsOf(const control::Controller
   p.rate_hz = c.rate_hz;
   p.filter_cutoff_hz = c.filter_cutoff_hz;
   return p;
-}
-
-sim::PlantConfig plantConfigOf(const FlightScenario& s) {
-  sim::PlantConfig c = s.plant;
-  c.step_s = 1.0 / s.plant_rate_hz;
-  return c;
 }
 
 /// One flight: everything is allocated by the constructor, nothing in run().
@@ -134,18 +91,7 @@ class FlightLoop {
         bins_(s.hover_bins),
         faults_(s.faults, s.seed, s.start_hover_s),
         telemetry_rpm_(Eigen::Vector4d::Constant(x0_.n_rpm[0])) {  // replaced by the first sample
-    if (s.disturbances.turbulence && s.disturbances.turbulence_params.per_rotor) {
-      plant_.addContribution(std::make_unique<sim::RotorTurbulence>(
-          s.disturbances.turbulence_params, truth_, s.seed));
-    } else if (s.disturbances.turbulence) {
-      plant_.addContribution(
-          std::make_unique<sim::GroundTurbulence>(s.disturbances.turbulence_params, s.seed));
-    }
-    if (s.disturbances.unsteadiness) {
-      plant_.addContribution(
-          std::make_unique<sim::Unsteadiness>(s.disturbances.unsteadiness_params, s.seed));
-    }
-    if (s.disturbances.wind) wind_.emplace(s.disturbances.wind_params, s.seed);
+    detail::addDisturbances(s, truth_, plant_, wind_);
     if (auto kick = faults_.kickContribution()) plant_.addContribution(std::move(kick));
     // Motors at the throttle that holds the initial rotor speed.
     throttle_.fill(plant_.throttleForSteadySpeed(x0_.n_rpm[0]));

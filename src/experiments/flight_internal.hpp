@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// Helpers shared by the flight runner (flight.cpp) and the scenario validation
-// (scenario_validation.cpp); not part of the public API.
+// Helpers shared by the flight runner (flight.cpp), the stepped world (stepped_world.cpp) and
+// the scenario validation (scenario_validation.cpp); not part of the public API.
 
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include "geaware/experiments/flight.hpp"
+#include "geaware/sim/disturbances.hpp"
+#include "geaware/sim/plant.hpp"
 #include "geaware/sim/terrains.hpp"
 
 namespace geaware::experiments::detail {
@@ -31,5 +34,24 @@ inline std::shared_ptr<const sim::Terrain> terrainOf(const FlightScenario& s) {
 inline double heightAbove(const sim::Terrain& terrain, const Eigen::Vector3d& p_W) noexcept {
   return p_W.z() - terrain.heightAt(p_W.x(), p_W.y());
 }
+
+// --- The truth side's start (flight_start.cpp) ------------------------------------------------
+
+/// The truth the scenario flies: its truth (or the nominal vehicle's), with the per-flight
+/// variation drawn from the scenario's seed.
+[[nodiscard]] sim::TruthParams truthOf(const FlightScenario& s);
+
+/// The truth's starting state: hovering level (at the reference's yaw) at the first point of
+/// the trajectory, rotors at the speed that carries the truth there.
+[[nodiscard]] sim::PlantState initialState(const sim::TruthParams& truth, const sim::Terrain& terrain,
+                                           const traj::Trajectory& trajectory);
+
+/// The plant's configuration at the scenario's plant rate.
+[[nodiscard]] sim::PlantConfig plantConfigOf(const FlightScenario& s);
+
+/// The scenario's turbulence (per rotor or whole body) and unsteadiness added to `plant`, and
+/// its wind model in `wind`, each seeded from the scenario.
+void addDisturbances(const FlightScenario& s, const sim::TruthParams& truth, sim::Plant& plant,
+                     std::optional<sim::Wind>& wind);
 
 }  // namespace geaware::experiments::detail

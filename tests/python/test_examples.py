@@ -35,3 +35,14 @@ def test_identify_example(source_dir):
     lines = run(source_dir, "identify.py")
     assert re.match(r"\d+ samples, 0\.\d+ to 0\.\d+ m$", lines[0]), lines[0]
     assert any(re.search(r"k_T_N_per_rpm2\s+\S+ ± \S+ N/rpm", line) for line in lines), lines
+
+
+
+def test_vecsim_example(source_dir):
+    lines = run(source_dir, "vecsim.py")
+    assert lines[0] == "8 vehicles, 3357 steps of 5 ms, struck: 0", lines
+    rmse_cm = [float(v) for v in lines[1].split(":")[1].split()]
+    assert len(rmse_cm) == 8
+    # A Python estimate from the observations alone (no Kalman filter) still tracks to a few cm.
+    assert all(1.0 < v < 6.0 for v in rmse_cm), rmse_cm
+    assert len(set(rmse_cm)) > 1, "every vehicle has its own seed"

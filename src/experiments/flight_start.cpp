@@ -1,0 +1,75 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The truth side's start, shared by the in-process runner (flight.cpp) and the stepped world
+// (stepped_world.cpp): one definition, so the two start every flight from the same state.
+#include <Eigen/Geometry>
+#include <cmath>
+#include <memory>
+
+#include "flight_internal.hpp"
+#include "geaware/sim/rotor_aerodynamics.hpp"
+#include "geaware/sim/rotor_turbulence.hpp"
+
+namespace geaware::experiments::detail {
+namespace {
+
+/// Rotor speed at which the truth hovers level at its initial pose (with its own ground
+/// effect): the thrust is exactly quadratic in a common rotor speed at rest, so one
+/// evaluation of the truth aerodynamics at a reference speed gives it.
+double truthHoverSpeed(const sim::TruthParams& truth, const sim::Terrain& terrain,
+                       const Eigen::Vector3d& p_W, const Eigen::Quaterniond& q_WB) {
+  const sim::RotorGeometry geometry = truth.rotorGeometry();
+  const sim::RotorAerodynamics aero(geometry, truth.aero);
+  const Eigen::Matrix3d R = q_WB.toRotationMatrix();
+  const Eigen::Vector3d p_com = p_W + R * truth.cog_offset_B;
+  const sim::RotorSurroundings around =
+      sim::rotorSurroundings(&terrain, p_com, R, geometry.position_B);
+  constexpr double kRef = 1000.0;  // [rpm]
+  const sim::RotorAeroOutput out =
+      aero.compute({kRef, kRef, kRef, kRef}, R, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+                   aero.flightFactors(around.ground_distance_m));  // the in-flight cushion
+  const double thrust = out.wrench.force_B.z();
+  return kRef * std::sqrt(truth.mass_kg * truth.gravity_mps2 / thrust);
+}
+
+}  // namespace
+
+sim::TruthParams truthOf(const FlightScenario& s) {
+  sim::TruthParams truth = s.truth ? *s.truth : sim::fromNominal(s.vehicle);
+  if (s.mismatch) truth = sim::perturbed(truth, *s.mismatch, s.seed);
+  return truth;
+}
+
+sim::PlantState initialState(const sim::TruthParams& truth, const sim::Terrain& terrain,
+                             const traj::Trajectory& trajectory) {
+  const traj::FlatOutput first = trajectory.sample(0.0);
+  sim::PlantState x0;
+  x0.p_W = first.p_W;
+  x0.q_WB = Eigen::Quaterniond(Eigen::AngleAxisd(first.yaw_rad, Eigen::Vector3d::UnitZ()));
+  const double n0 = truthHoverSpeed(truth, terrain, x0.p_W, x0.q_WB);
+  x0.n_rpm = {n0, n0, n0, n0};
+  return x0;
+}
+
+sim::PlantConfig plantConfigOf(const FlightScenario& s) {
+  sim::PlantConfig c = s.plant;
+  c.step_s = 1.0 / s.plant_rate_hz;
+  return c;
+}
+
+void addDisturbances(const FlightScenario& s, const sim::TruthParams& truth, sim::Plant& plant,
+                     std::optional<sim::Wind>& wind) {
+  if (s.disturbances.turbulence && s.disturbances.turbulence_params.per_rotor) {
+    plant.addContribution(
+        std::make_unique<sim::RotorTurbulence>(s.disturbances.turbulence_params, truth, s.seed));
+  } else if (s.disturbances.turbulence) {
+    plant.addContribution(
+        std::make_unique<sim::GroundTurbulence>(s.disturbances.turbulence_params, s.seed));
+  }
+  if (s.disturbances.unsteadiness) {
+    plant.addContribution(
+        std::make_unique<sim::Unsteadiness>(s.disturbances.unsteadiness_params, s.seed));
+  }
+  if (s.disturbances.wind) wind.emplace(s.disturbances.wind_params, s.seed);
+}
+
+}  // namespace geaware::experiments::detail
