@@ -56,6 +56,9 @@ Runner addFlyCommand(CLI::App& app);
 /// `geaware bench`: the paper's experiments (experiments/campaign.hpp): calibration, the
 /// Neural-Lander baseline, Table I and the hover experiment over seeds. docs/results.md.
 Runner addBenchCommand(CLI::App& app);
+/// `geaware sweep SPEC.yaml --out DIR`: the flights of a sweep file, one record file per flight,
+/// merged into DIR/results.json (experiments/sweep.hpp). docs/sweeps.md.
+Runner addSweepCommand(CLI::App& app);
 /// `geaware identify {rotor,platform,flight,correlations} LOG.csv`: identification from rig and
 /// flight logs (ident/identify.hpp). docs/identification.md.
 Runner addIdentifyCommand(CLI::App& app);

@@ -81,6 +81,7 @@ int main(int argc, char** argv) {
                                   std::pair{"logs", &cli::addLogsCommand},
                                   std::pair{"fly", &cli::addFlyCommand},
                                   std::pair{"bench", &cli::addBenchCommand},
+                                  std::pair{"sweep", &cli::addSweepCommand},
                                   std::pair{"train-residual", &cli::addTrainCommand}}) {
     cli::Runner runner = add(app);  // registers the subcommand `name`
     app.get_subcommand(name)->callback([&run, runner] { run = runner; });

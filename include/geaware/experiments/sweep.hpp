@@ -1,0 +1,142 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// Sweeps (issue 15 item 3, docs/sweeps.md): truth perturbations × controllers × scenarios ×
+// seeds, read from a YAML sweep file. Every flight has a key, a canonical string such as
+//   case=mass+10%/ctl=recommended/scn=lem-0.12m-1mps/seed=3
+// (the parts always in this order; the keys of a sweep in spec order: case, controller,
+// scenario, seed), and its result record is a pure function of the spec and the key
+// (runSweepFlight): the same bytes whatever thread, process or machine flies it. A run writes
+// one file per key (DIR/flights/<sweepKeyFileName(key)>) and merges them into DIR/results.json
+// (mergeSweep), which is therefore byte-identical however the flights were spread.
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "geaware/control/controller_params.hpp"
+#include "geaware/experiments/flight.hpp"
+#include "geaware/experiments/robustness.hpp"
+#include "geaware/model/vehicle_params.hpp"
+#include "geaware/sim/terrain.hpp"
+#include "geaware/sim/world.hpp"
+#include "geaware/traj/trajectory.hpp"
+
+namespace geaware::experiments {
+
+/// Limits checked when the file is read, before any work.
+inline constexpr std::size_t kSweepMaxCases = 1000;
+inline constexpr std::size_t kSweepMaxControllers = 100;
+inline constexpr std::size_t kSweepMaxScenarios = 1000;
+inline constexpr std::size_t kSweepMaxFlights = 1'000'000;  ///< cases × controllers × scenarios × seeds
+/// The longest file name of a flight's record (file systems allow 255 bytes; the temporary
+/// file beside it adds 17) [bytes].
+inline constexpr std::size_t kSweepMaxFileName = 200;
+
+/// A flown trajectory and its surface.
+struct SweepScenario {
+  std::string name;  ///< the key's `scn=` part, e.g. "lem-0.12m-1mps"
+  std::shared_ptr<const traj::Trajectory> trajectory;
+  std::shared_ptr<const sim::Terrain> terrain;  ///< null: flat ground at z = 0
+};
+
+/// A parsed sweep file.
+struct SweepSpec {
+  std::string source;  ///< the file as named (errors)
+  std::string fingerprint;  ///< SHA-256 of the file's bytes: identifies the sweep (memo, DIR)
+  model::VehicleParams vehicle;  ///< the belief's starting point (the vehicle file)
+  sim::World world;              ///< the unperturbed world
+  std::string world_reference;   ///< `world` as the file gives it ("default", a name, a path)
+  bool calibrate = true;  ///< calibrateController in the unperturbed world (law cases: in theirs)
+  double start_hover_s = 3.0;  ///< hover before the trajectory [s]
+  std::vector<Perturbation> cases;
+  std::vector<SuiteController> controllers;
+  std::optional<control::ControllerParams> controller_values;  ///< controller_params file
+  std::vector<SweepScenario> scenarios;
+  std::uint64_t first_seed = 1;
+  std::uint64_t seed_count = 1;
+
+  /// cases × controllers × scenarios × seeds.
+  [[nodiscard]] std::size_t flights() const noexcept;
+};
+
+/// Reads a sweep file (format: docs/sweeps.md); relative paths inside it are resolved against
+/// its folder. Throws io::ConfigError (file, line, key, expectation) — also for a list longer
+/// than its limit or more than kSweepMaxFlights flights — or std::runtime_error when the file
+/// cannot be read.
+[[nodiscard]] SweepSpec loadSweepFile(const std::filesystem::path& file);
+/// Parses sweep YAML; `source` names it in errors, `base_dir` resolves relative paths.
+[[nodiscard]] SweepSpec parseSweepYaml(std::string_view yaml_text, const std::string& source,
+                                       const std::filesystem::path& base_dir);
+
+/// One flight of a sweep, by index.
+struct SweepKey {
+  std::size_t case_index = 0;
+  std::size_t controller_index = 0;
+  std::size_t scenario_index = 0;
+  std::uint64_t seed = 0;
+};
+
+/// The canonical key text of `k`.
+[[nodiscard]] std::string sweepKeyText(const SweepSpec& spec, const SweepKey& k);
+/// Every key of the sweep, in spec order (case, controller, scenario, seed).
+[[nodiscard]] std::vector<std::string> sweepKeys(const SweepSpec& spec);
+/// The flight of `key`; throws std::invalid_argument naming the key and the part that is not
+/// this sweep's.
+[[nodiscard]] SweepKey parseSweepKey(const SweepSpec& spec, const std::string& key);
+/// The file name of a key's record: the key with '/' written ',' and every byte other than
+/// A–Z a–z 0–9 . + = - written _XX (hex), then ".json". Distinct keys, distinct names.
+[[nodiscard]] std::string sweepKeyFileName(std::string_view key);
+
+/// The flight of `k`, ready to fly: the (calibrated) belief, the perturbed world, the
+/// controller, the trajectory and the seed. The calibrations are computed once per process
+/// and sweep (memoised by the spec's fingerprint; thread-safe).
+[[nodiscard]] FlightScenario sweepFlightScenario(const SweepSpec& spec, const SweepKey& k);
+/// Calibrates (and trains, for a neural controller) every world the sweep needs, now, so that
+/// the flights find them memoised; `progress` gets one message per world.
+void prepareSweep(const SweepSpec& spec, Progress* progress = nullptr);
+
+/// The flight's record: one line of JSON (no newline) with the key, its parts and the suite's
+/// flight metrics (experiments::SuiteFlight), numbers in their shortest round-trip form.
+[[nodiscard]] std::string sweepRecord(const SweepSpec& spec, const SweepKey& k, const FlightResult& r);
+/// Flies the key and returns its record (a pure function of spec and key).
+[[nodiscard]] std::string runSweepFlight(const SweepSpec& spec, const std::string& key);
+
+// --- The results directory -------------------------------------------------------------------
+
+/// DIR/flights/<sweepKeyFileName(key)>.
+[[nodiscard]] std::filesystem::path sweepFlightPath(const std::filesystem::path& dir,
+                                                    const std::string& key);
+/// Whether the key's record file exists and holds the record of `key` (parses, same key).
+[[nodiscard]] bool sweepFlightDone(const std::filesystem::path& dir, const std::string& key);
+/// The keys without a finished record, in spec order.
+[[nodiscard]] std::vector<std::string> missingSweepKeys(const SweepSpec& spec,
+                                                        const std::filesystem::path& dir);
+/// Makes DIR and DIR/flights, and records the spec's fingerprint in DIR/sweep.sha256; throws
+/// std::runtime_error when DIR holds another sweep's results (another fingerprint).
+void prepareSweepDirectory(const SweepSpec& spec, const std::filesystem::path& dir);
+/// Writes a key's record atomically (temporary file in DIR/flights, then rename).
+void writeSweepFlight(const std::filesystem::path& dir, const std::string& key,
+                      std::string_view record);
+/// The merged document: {"geaware_version", "sweep": {cases, controllers, scenarios, seeds},
+/// "flights", "records": [each record, in key order]} as text, one record a line. Throws
+/// std::runtime_error naming the number of missing keys and the first one.
+[[nodiscard]] std::string mergeSweepText(const SweepSpec& spec, const std::filesystem::path& dir);
+/// mergeSweepText written atomically to DIR/results.json; returns its path.
+std::filesystem::path mergeSweep(const SweepSpec& spec, const std::filesystem::path& dir);
+
+/// Called after each flight, one call at a time: done so far of total, the key.
+using SweepProgress = std::function<void(std::size_t done, std::size_t total, const std::string& key)>;
+/// Flies `keys` on `threads` threads (resolveThreads), each record written as soon as it is
+/// flown. A flight that throws stops the others from starting; the first error is rethrown
+/// with its key once every thread has finished. Returns the number of flights flown.
+std::size_t runSweepKeys(const SweepSpec& spec, const std::filesystem::path& dir,
+                         const std::vector<std::string>& keys, int threads,
+                         const SweepProgress& progress = {});
+
+}  // namespace geaware::experiments

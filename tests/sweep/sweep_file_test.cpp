@@ -1,0 +1,196 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The sweep file (experiments/sweep.hpp, docs/sweeps.md): what it expands to, its keys and
+// their file names, and the errors that name the file, the line and the key.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "geaware/experiments/robustness.hpp"
+#include "geaware/experiments/sweep.hpp"
+#include "geaware/experiments/table_one.hpp"
+#include "geaware/traj/lemniscate.hpp"
+#include "geaware/io/config_error.hpp"
+#include "sweep_support.hpp"
+
+using geaware::experiments::parseSweepYaml;
+using geaware::experiments::SweepSpec;
+using geaware::sweep_test::slurp;
+using geaware::sweep_test::sourceDir;
+
+namespace {
+
+std::string sweep64() { return slurp(sourceDir() / "tests/sweep/sweep64.yaml"); }
+
+SweepSpec parse(const std::string& text) {
+  return parseSweepYaml(text, "s.yaml", sourceDir() / "tests/sweep");
+}
+
+std::string replaced(const std::string& text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  if (at == std::string::npos || text.find(from, at + 1) != std::string::npos) {
+    throw std::logic_error("pattern must occur exactly once: " + from);
+  }
+  return text.substr(0, at) + to + text.substr(at + from.size());
+}
+
+int lineOf(const std::string& text, const std::string& needle) {
+  const auto at = text.find(needle);
+  return at == std::string::npos ? -1 : 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+}
+
+std::vector<geaware::io::ConfigProblem> problemsOf(const std::string& text) {
+  try {
+    (void)parse(text);
+  } catch (const geaware::io::ConfigError& e) {
+    EXPECT_EQ(e.file(), "s.yaml");
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("s.yaml:"));
+    return e.problems();
+  }
+  ADD_FAILURE() << "the sweep was accepted";
+  return {};
+}
+
+/// The one problem of `text`: at `line`, key `key`, the message containing `words`.
+void expectProblem(const std::string& text, int line, const std::string& key, const std::string& words) {
+  const auto p = problemsOf(text);
+  ASSERT_EQ(p.size(), 1u) << (p.empty() ? "" : p[0].message);
+  EXPECT_EQ(p[0].line, line);
+  EXPECT_EQ(p[0].key, key);
+  EXPECT_THAT(p[0].message, ::testing::HasSubstr(words));
+}
+
+}  // namespace
+
+TEST(SweepFile, TheTestSweepExpandsToSixtyFourKeysInSpecOrder) {
+  const SweepSpec s = parse(sweep64());
+  ASSERT_EQ(s.flights(), 64u);
+  const auto keys = geaware::experiments::sweepKeys(s);
+  ASSERT_EQ(keys.size(), 64u);
+  EXPECT_EQ(keys.front(), "case=none/ctl=recommended/scn=lem-0.3m-1mps/seed=1");
+  EXPECT_EQ(keys[1], "case=none/ctl=recommended/scn=lem-0.3m-1mps/seed=2");
+  EXPECT_EQ(keys[4], "case=none/ctl=recommended/scn=slow-high/seed=1");
+  EXPECT_EQ(keys[8], "case=none/ctl=indi:none/scn=lem-0.3m-1mps/seed=1");
+  EXPECT_EQ(keys.back(), "case=windy/ctl=indi:none/scn=slow-high/seed=4");
+  EXPECT_EQ(keys[16], "case=mass+10%/ctl=recommended/scn=lem-0.3m-1mps/seed=1");
+  EXPECT_EQ(keys[32], "case=cushion+0.5/ctl=recommended/scn=lem-0.3m-1mps/seed=1");
+  // The named suite case is the robustness suite's own.
+  EXPECT_EQ(s.cases[1].kind, geaware::experiments::PerturbationKind::kMass);
+  EXPECT_DOUBLE_EQ(s.cases[1].value, 0.10);
+  EXPECT_EQ(s.cases[2].kind, geaware::experiments::PerturbationKind::kInFlightCushion);
+  EXPECT_EQ(s.cases[3].kind, geaware::experiments::PerturbationKind::kGusts);
+  EXPECT_FALSE(s.calibrate);
+  EXPECT_EQ(s.start_hover_s, 1.0);
+  // Every key parses back to itself, and the file names are distinct.
+  std::set<std::string> files;
+  for (const auto& k : keys) {
+    EXPECT_EQ(geaware::experiments::sweepKeyText(s, geaware::experiments::parseSweepKey(s, k)), k);
+    files.insert(geaware::experiments::sweepKeyFileName(k));
+  }
+  EXPECT_EQ(files.size(), keys.size());
+}
+
+TEST(SweepFile, KeyFileNamesAreSafeAndDistinct) {
+  using geaware::experiments::sweepKeyFileName;
+  EXPECT_EQ(sweepKeyFileName("case=mass+10%/ctl=model:model_indi/scn=a b/seed=3"),
+            "case=mass+10_25,ctl=model_3amodel_5findi,scn=a_20b,seed=3.json");
+  // '_' is escaped itself, so "a_2f" and "a/" cannot meet; '/' and ',' differ.
+  EXPECT_NE(sweepKeyFileName("a_2c"), sweepKeyFileName("a,"));
+  EXPECT_NE(sweepKeyFileName("a/"), sweepKeyFileName("a_2c"));
+  EXPECT_EQ(sweepKeyFileName(".."), "_2e..json");
+  EXPECT_EQ(sweepKeyFileName("x\xce\xbc"), "x_ce_bc.json");
+}
+
+TEST(SweepFile, BadKeysAreRefusedNamingThePart) {
+  const SweepSpec s = parse(sweep64());
+  using geaware::experiments::parseSweepKey;
+  EXPECT_THROW((void)parseSweepKey(s, "case=none/ctl=recommended/scn=lem-0.3m-1mps/seed=5"), std::invalid_argument);
+  EXPECT_THROW((void)parseSweepKey(s, "case=none/ctl=recommended/scn=lem-0.3m-1mps/seed=01"), std::invalid_argument);
+  EXPECT_THROW((void)parseSweepKey(s, "case=none/ctl=recommended/scn=lem-0.3m-1mps"), std::invalid_argument);
+  try {
+    (void)parseSweepKey(s, "case=heavy/ctl=recommended/scn=lem-0.3m-1mps/seed=1");
+    FAIL() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("case='heavy' is not one of this sweep's"));
+  }
+}
+
+TEST(SweepFile, ProblemsNameTheLineAndTheKey) {
+  const std::string t = sweep64();
+  expectProblem(replaced(t, "calibrate: false", "calibrate: maybe"), lineOf(t, "calibrate:"), "calibrate", "");
+  expectProblem(replaced(t, "  - indi:none\n", "  - indi:fast\n"), lineOf(t, "  - indi:none"),
+                "controllers[1]", "expected 'recommended' or ACC:TORQUE");
+  expectProblem(replaced(t, "  - name: mass+10%\n", "  - name: mass+11%\n"), lineOf(t, "mass+10%"),
+                "perturbations[1].name", "expected a case of the robustness suite");
+  expectProblem(replaced(t, "{kind: cushion, value: 0.5}", "{kind: cushions, value: 0.5}"), lineOf(t, "kind: cushion"),
+                "perturbations[2].kind", "");
+  expectProblem(replaced(t, "{kind: gusts, value: 0.3, name: windy}", "{kind: gusts, value: .nan, name: windy}"),
+                lineOf(t, "kind: gusts"), "perturbations[3].value", "not a finite number");
+  expectProblem(replaced(t, "name: windy}", "name: mass+10%}"), lineOf(t, "name: windy"), "perturbations[3]",
+                "listed twice");
+  expectProblem(replaced(t, "name: slow-high}", "name: a/b}"), lineOf(t, "slow-high"), "scenarios[1].name",
+                "without '/'");
+  expectProblem(replaced(t, "speed_mps: 0.5,", "speed_mps: 0.5, colour: red,"), lineOf(t, "speed_mps: 0.5"),
+                "scenarios[1].colour", "");
+  expectProblem(replaced(t, "seeds: {first: 1, count: 4}", "seeds: {first: 1}"), lineOf(t, "seeds:"),
+                "seeds.count", "missing");
+  expectProblem(replaced(t, "world: default", "world: marsh"), lineOf(t, "world:"), "world", "cannot use the world");
+  expectProblem(replaced(t, "format_version: 1", "format_version: 7"), lineOf(t, "format_version"),
+                "format_version", "");
+  expectProblem(replaced(t, "calibrate: false\n", "calibrate: false\nrepeats: 3\n"), lineOf(t, "calibrate:") + 1,
+                "repeats", "");
+  // A lemniscate that cannot be flown is refused at its item.
+  expectProblem(replaced(t, "speed_mps: 0.5,", "speed_mps: -0.5,"), lineOf(t, "slow-high"), "scenarios[1].type",
+                "not a usable lemniscate");
+}
+
+TEST(SweepFile, ListSizesAndTheProductAreBoundedBeforeAnyWork) {
+  const std::string t = sweep64();
+  // 4 × 2 × 2 × 62,501 > 10^6 flights.
+  expectProblem(replaced(t, "count: 4", "count: 62501"), lineOf(t, "seeds:"), "seeds", "expected at most 1000000");
+  EXPECT_EQ(parse(replaced(t, "count: 4", "count: 62500")).flights(), 1'000'000u);
+  std::string many = "controllers:\n";
+  for (int i = 0; i < 101; ++i) many += "  - recommended\n";
+  expectProblem(replaced(t, "controllers:\n  - recommended\n  - indi:none\n", many), lineOf(t, "controllers:"),
+                "controllers", "has 101 items, expected at most 100");
+}
+
+TEST(SweepFile, TheShippedRobustnessSweepIsTheRobustnessSuite) {
+  const SweepSpec s = geaware::experiments::loadSweepFile(sourceDir() / "config/sweeps/robustness.yaml");
+  const auto cells = geaware::experiments::robustnessCells();
+  const auto controllers = geaware::experiments::robustnessControllers();
+  const auto conditions = geaware::experiments::robustnessConditions();
+  ASSERT_EQ(s.cases.size(), cells.size());
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    EXPECT_EQ(s.cases[i].name, cells[i].name);
+    EXPECT_EQ(s.cases[i].kind, cells[i].kind);
+    EXPECT_EQ(s.cases[i].value, cells[i].value);
+    EXPECT_EQ(s.cases[i].law, cells[i].law);
+  }
+  ASSERT_EQ(s.controllers.size(), controllers.size());
+  for (std::size_t i = 0; i < controllers.size(); ++i) EXPECT_EQ(s.controllers[i].name, controllers[i].name);
+  ASSERT_EQ(s.scenarios.size(), conditions.size());
+  for (std::size_t i = 0; i < conditions.size(); ++i) {
+    const auto* l = dynamic_cast<const geaware::traj::Lemniscate*>(s.scenarios[i].trajectory.get());
+    ASSERT_NE(l, nullptr);
+    const auto want = geaware::experiments::lemniscateFor(
+        geaware::experiments::tableOneExperiment(conditions[i].experiment));
+    EXPECT_EQ(l->params().height_m, want.height_m);
+    EXPECT_EQ(l->params().peak_speed_mps, want.peak_speed_mps);
+    EXPECT_EQ(l->params().half_extent_x_m, want.half_extent_x_m);
+    EXPECT_EQ(l->params().half_extent_y_m, want.half_extent_y_m);
+    EXPECT_EQ(l->params().laps, want.laps);
+    EXPECT_EQ(l->params().ramp_time_s, want.ramp_time_s);
+  }
+  EXPECT_TRUE(s.calibrate);
+  EXPECT_EQ(s.start_hover_s, 3.0);
+  EXPECT_EQ(s.seed_count, 5u);
+  // The suite's cells × seeds: 16 × 7 × 2 × 5.
+  EXPECT_EQ(s.flights(), cells.size() * controllers.size() * conditions.size() * 5);
+  EXPECT_EQ(s.flights(), 1120u);
+}

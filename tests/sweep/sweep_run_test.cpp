@@ -1,0 +1,174 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Running a sweep (experiments/sweep.hpp): a key's record is the flight it names, the merged
+// file is byte-identical for any number of threads, and a rerun flies only the keys without a
+// record.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "geaware/control/controller_params.hpp"
+#include "geaware/experiments/flight.hpp"
+#include "geaware/experiments/robustness.hpp"
+#include "geaware/experiments/sweep.hpp"
+#include "geaware/experiments/world_setup.hpp"
+#include "geaware/io/json.hpp"
+#include "geaware/io/vehicle_file.hpp"
+#include "geaware/traj/lemniscate.hpp"
+#include "sweep_support.hpp"
+
+namespace ex = geaware::experiments;
+namespace fs = std::filesystem;
+using geaware::sweep_test::slurp;
+using geaware::sweep_test::sourceDir;
+using geaware::sweep_test::TempDir;
+
+namespace {
+
+const ex::SweepSpec& spec64() {
+  static const ex::SweepSpec s = ex::loadSweepFile(sourceDir() / "tests/sweep/sweep64.yaml");
+  return s;
+}
+
+/// Every key flown into a fresh `dir` on `threads` threads; the merged text.
+std::string runAll(const fs::path& dir, int threads) {
+  ex::prepareSweepDirectory(spec64(), dir);
+  const auto keys = ex::missingSweepKeys(spec64(), dir);
+  EXPECT_EQ(keys.size(), 64u);
+  EXPECT_EQ(ex::runSweepKeys(spec64(), dir, keys, threads), 64u);
+  EXPECT_TRUE(ex::missingSweepKeys(spec64(), dir).empty());
+  return ex::mergeSweepText(spec64(), dir);
+}
+
+}  // namespace
+
+TEST(SweepRun, AKeysRecordIsTheFlightItNames) {
+  // The flight of case=mass+10%/ctl=indi:none/scn=slow-high/seed=3, built by hand as the file
+  // says: the built-in vehicle in its default world, uncalibrated, the truth's mass × 1.1.
+  ex::FlightScenario f;
+  f.vehicle = geaware::io::builtinVehicle();
+  ex::applyWorld(f, ex::defaultWorld(f.vehicle, true, "builtin"));
+  f.start_hover_s = 1.0;
+  f.truth->mass_kg *= 1.10;
+  geaware::traj::LemniscateParams lp;
+  lp.height_m = 1.0;
+  lp.peak_speed_mps = 0.5;
+  lp.half_extent_x_m = 0.6;
+  lp.half_extent_y_m = 0.3;
+  f.trajectory = std::make_shared<geaware::traj::Lemniscate>(lp);
+  ASSERT_TRUE(geaware::control::parseConfiguration("indi:none", f.controller));
+  f.seed = 3;
+  const ex::FlightResult r = ex::runFlight(f);
+  const ex::SuiteFlight expected = ex::toSuiteFlight(3, r);
+
+  const std::string key = "case=mass+10%/ctl=indi:none/scn=slow-high/seed=3";
+  const std::string record = ex::runSweepFlight(spec64(), key);
+  const auto j = geaware::io::Json::parse(record);
+  EXPECT_EQ(j["key"], key);
+  EXPECT_EQ(j["case"], "mass+10%");
+  EXPECT_EQ(j["controller"], "indi:none");
+  EXPECT_EQ(j["scenario"], "slow-high");
+  EXPECT_EQ(j["seed"], 3);
+  EXPECT_EQ(j["struck"], expected.struck);
+  EXPECT_EQ(j["rmse_all_cm"].get<double>(), expected.rmse_all_cm);
+  EXPECT_EQ(j["rmse_xy_cm"].get<double>(), expected.rmse_xy_cm);
+  EXPECT_EQ(j["max_cm"].get<double>(), expected.max_cm);
+  EXPECT_EQ(j["simulated_s"].get<double>(), r.simulated_s);
+  EXPECT_GT(expected.rmse_all_cm, 0.0);
+  // One line, and the same bytes when flown again.
+  EXPECT_EQ(record.find('\n'), std::string::npos);
+  EXPECT_EQ(ex::runSweepFlight(spec64(), key), record);
+  // Another seed is another flight.
+  EXPECT_NE(ex::runSweepFlight(spec64(), "case=mass+10%/ctl=indi:none/scn=slow-high/seed=2"), record);
+}
+
+TEST(SweepRun, MergedResultsAreByteIdenticalForOneAndTwoThreadsAndAResumeFliesOnlyTheMissing) {
+  TempDir a("sweep-a"), b("sweep-b");
+  const std::string one = runAll(a.path(), 1);
+  const std::string two = runAll(b.path(), 2);
+  EXPECT_EQ(one, two);
+  const auto doc = geaware::io::Json::parse(one);
+  ASSERT_EQ(doc["records"].size(), 64u);
+  EXPECT_EQ(doc["flights"], 64);
+  const auto keys = ex::sweepKeys(spec64());
+  for (std::size_t i = 0; i < keys.size(); ++i) EXPECT_EQ(doc["records"][i]["key"], keys[i]);
+  // Flights differ (a merge of one record 64 times would not).
+  std::set<double> rmse;
+  for (const auto& r : doc["records"]) rmse.insert(r["rmse_all_cm"].get<double>());
+  EXPECT_GT(rmse.size(), 60u);
+
+  // Remove four records, truncate one and give one another key's text: exactly these six are
+  // missing, a rerun flies six, the others are not touched, the merge is the same.
+  std::map<std::string, fs::file_time_type> before;
+  for (const auto& k : keys) before[k] = fs::last_write_time(ex::sweepFlightPath(a.path(), k));
+  const std::vector<std::size_t> gone = {0, 17, 40, 63};
+  for (const auto i : gone) fs::remove(ex::sweepFlightPath(a.path(), keys[i]));
+  { std::ofstream(ex::sweepFlightPath(a.path(), keys[5]), std::ios::trunc) << "{\"key\": \"cas"; }
+  fs::copy_file(ex::sweepFlightPath(a.path(), keys[7]), ex::sweepFlightPath(a.path(), keys[9]),
+                fs::copy_options::overwrite_existing);
+  EXPECT_THROW((void)ex::mergeSweepText(spec64(), a.path()), std::runtime_error);
+  const auto missing = ex::missingSweepKeys(spec64(), a.path());
+  EXPECT_EQ(missing, (std::vector<std::string>{keys[0], keys[5], keys[9], keys[17], keys[40], keys[63]}));
+  EXPECT_EQ(ex::runSweepKeys(spec64(), a.path(), missing, 2), 6u);
+  EXPECT_EQ(ex::mergeSweepText(spec64(), a.path()), one);
+  for (const auto& k : keys) {
+    if (std::find(missing.begin(), missing.end(), k) != missing.end()) continue;
+    EXPECT_EQ(fs::last_write_time(ex::sweepFlightPath(a.path(), k)), before[k]) << k;
+  }
+  // Nothing but the records (no temporary file left).
+  std::size_t files = 0;
+  for (const auto& e : fs::directory_iterator(a.path() / "flights")) {
+    EXPECT_EQ(e.path().extension(), ".json") << e.path();
+    ++files;
+  }
+  EXPECT_EQ(files, 64u);
+}
+
+TEST(SweepRun, MergeNamesTheMissingAndADirectoryKeepsItsSweep) {
+  TempDir d("sweep-d");
+  ex::prepareSweepDirectory(spec64(), d.path());
+  try {
+    (void)ex::mergeSweepText(spec64(), d.path());
+    FAIL() << "merged nothing";
+  } catch (const std::runtime_error& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("64 of 64 flights have no record"));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("case=none/ctl=recommended/scn=lem-0.3m-1mps/seed=1"));
+  }
+  ex::SweepSpec other = spec64();
+  other.fingerprint = "0123";
+  try {
+    ex::prepareSweepDirectory(other, d.path());
+    FAIL() << "another sweep's directory was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("holds the results of another sweep file"));
+  }
+  ex::prepareSweepDirectory(spec64(), d.path());  // the same sweep: fine
+}
+
+TEST(SweepRun, AFailingFlightIsReportedWithItsKey) {
+  // A lemniscate at 6 m/s with 0.3 s ramps is beyond the motors (the flight's feasibility
+  // check): the flight throws, the error names the key.
+  std::string text = slurp(sourceDir() / "tests/sweep/sweep64.yaml");
+  const std::string from = "speed_mps: 1.0,";
+  text.replace(text.find(from), from.size(), "speed_mps: 6.0, ramp_time_s: 0.3,");
+  const ex::SweepSpec s = ex::parseSweepYaml(text, "low.yaml", sourceDir() / "tests/sweep");
+  TempDir d("sweep-e");
+  ex::prepareSweepDirectory(s, d.path());
+  const std::vector<std::string> keys = {"case=none/ctl=recommended/scn=lem-0.3m-6mps/seed=1"};
+  try {
+    (void)ex::runSweepKeys(s, d.path(), keys, 1);
+    FAIL() << "flew";
+  } catch (const std::runtime_error& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("flight case=none/ctl=recommended/scn=lem-0.3m-6mps/seed=1: "));
+  }
+  EXPECT_FALSE(ex::sweepFlightDone(d.path(), keys[0]));
+}
