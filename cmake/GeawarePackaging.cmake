@@ -29,6 +29,8 @@ if(GEAWARE_PYTHON)
   math(EXPR geaware_python_next "${Python3_VERSION_MINOR} + 1")
   string(APPEND CPACK_DEBIAN_PACKAGE_RECOMMENDS
          ", python3 (>= ${Python3_VERSION_MAJOR}.${Python3_VERSION_MINOR}), "
-         "python3 (<< ${Python3_VERSION_MAJOR}.${geaware_python_next}), python3-numpy")
+         "python3 (<< ${Python3_VERSION_MAJOR}.${geaware_python_next}), python3-numpy, "
+         # python3 -m geaware.sweep on a Dask cluster (docs/sweeps.md); --processes needs none.
+         "python3-distributed")
 endif()
 include(CPack)

@@ -50,6 +50,8 @@ struct FlyArgs {
 /// The scenario `geaware fly` would fly with these arguments (flight_bindings.cpp); ValueError
 /// or geaware.ConfigError naming what is wrong.
 experiments::FlightScenario scenarioOf(const FlyArgs& a);
+/// Sweeps: keys, one key's flight, the results directory (sweep_bindings.cpp).
+void bindSweep(py::module_& m);
 
 /// A new float64 array of the given shape.
 DoubleArray newArray(std::initializer_list<py::ssize_t> shape);

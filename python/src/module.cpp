@@ -67,4 +67,5 @@ PYBIND11_MODULE(_geaware, m) {
   geaware::python::bindFlight(m);
   geaware::python::bindIdentify(m);
   geaware::python::bindSim(m);
+  geaware::python::bindSweep(m);
 }
