@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// The ground effect learned in flight (issue 13 item 3): F_G(h), the extra thrust ratio, as
+// values at fixed knot heights, estimated from the disturbance observer's flight estimate
+// F̃_G = m·z_Wᵀ·ã_ext/T (the paper's eq. for its flight data) by exponentially weighted least
+// squares with a prior.
+//
+// The curve between knots is linear in the knot values θ (hat functions), so a sample at
+// height h in [h_j, h_j+1] is y = (1−t)·θ_j + t·θ_j+1 + noise, t = (h − h_j)/(h_j+1 − h_j).
+// Each interval keeps its own sufficient statistics (a 2×2 information matrix and a 2-vector)
+// and forgets (factor λ per sample) only when a sample falls in it: information about heights
+// the vehicle no longer visits is kept, so with poor excitation nothing drifts (directional
+// forgetting, Kulhavý 1987). The estimate solves the tridiagonal normal equations
+//     (Λ₀ + Σ_j A_j) θ = Λ₀·θ₀ + Σ_j b_j
+// with the prior θ₀ (the vehicle file's curve at the knots, or 0: no model at all) of
+// information Λ₀ = 1/σ₀² per knot, then bounds θ to [min, max]. Knots no sample reached keep
+// their prior. No allocation after construction; every update is O(knots).
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "geaware/model/field_error.hpp"
+
+namespace geaware::control {
+
+struct GroundEffectLearnerParams {
+  /// Knot heights of the learned curve, strictly increasing, 2 to kMaxKnots, rotor plane above
+  /// the ground [m]. Samples outside [first, last] are not used.
+  std::vector<double> knots_m = {0.08, 0.10, 0.12, 0.14, 0.17, 0.20, 0.24, 0.28, 0.33, 0.40, 0.50};
+  double forgetting = 0.999;       ///< λ per sample in an interval, (0, 1] [-]
+  double sample_sigma = 0.05;      ///< σ of one F̃_G sample [-]
+  double prior_sigma = 0.02;       ///< σ₀ of the prior at each knot [-]
+  double min_ratio = 0.0;          ///< lower bound on F_G [-]
+  double max_ratio = 1.5;          ///< upper bound on F_G [-]
+  double max_abs_sample = 2.0;     ///< |F̃_G| above this is an outlier, not used [-]
+  double max_tilt_rad = 0.35;      ///< samples at a larger tilt are not used [rad]
+  double max_speed_mps = 1.5;      ///< nor at a larger horizontal speed (forward-flight fade) [m/s]
+  double max_climb_mps = 0.5;      ///< nor at a larger vertical speed [m/s]
+  /// A knot counts as learned once its data information reaches this many samples' worth [-].
+  double learned_samples = 200.0;
+
+  [[nodiscard]] std::vector<model::FieldError> validate() const;
+};
+
+/// Why a sample was or was not used.
+enum class LearnerSample : std::uint8_t {
+  kUsed, kNonFinite, kOutsideKnots, kOutlier, kTilted, kFast, kClimbing
+};
+
+class GroundEffectLearner {
+ public:
+  static constexpr std::size_t kMaxKnots = 16;
+
+  /// prior_values: θ₀ at each knot (same count as params.knots_m). Throws
+  /// model::InvalidParameters for invalid params or a prior of the wrong size / non-finite.
+  GroundEffectLearner(const GroundEffectLearnerParams& params, const std::vector<double>& prior_values);
+
+  /// One flight estimate: F̃_G at height h_m, with the tilt, horizontal and vertical speeds that
+  /// gate it. No allocation.
+  LearnerSample update(double h_m, double f_g, double tilt_rad, double speed_mps,
+                       double climb_mps) noexcept;
+
+  [[nodiscard]] std::size_t knots() const noexcept { return n_; }
+  [[nodiscard]] double knot_m(std::size_t k) const noexcept { return h_[k]; }
+  /// Current estimate θ_k [-].
+  [[nodiscard]] double value(std::size_t k) const noexcept { return theta_[k]; }
+  [[nodiscard]] const double* values() const noexcept { return theta_.data(); }
+  /// Information from data at knot k, in samples' worth [-].
+  [[nodiscard]] double dataSamples(std::size_t k) const noexcept;
+  [[nodiscard]] bool learned(std::size_t k) const noexcept { return dataSamples(k) >= learned_samples_; }
+  /// The learned curve at h (linear between knots, the first / last value held outside) [-].
+  [[nodiscard]] double ratio(double h_m) const noexcept;
+  /// Samples used so far.
+  [[nodiscard]] std::uint64_t used() const noexcept { return used_; }
+  /// Increments whenever the estimate changes (the controller re-reads the values then).
+  [[nodiscard]] std::uint64_t revision() const noexcept { return used_; }
+
+ private:
+  struct Interval {
+    double a00 = 0.0, a01 = 0.0, a11 = 0.0;  // information [1/σ²]
+    double b0 = 0.0, b1 = 0.0;
+  };
+  void solve() noexcept;
+
+  std::size_t n_ = 0;
+  std::array<double, kMaxKnots> h_{};
+  std::array<double, kMaxKnots> prior_{};
+  std::array<double, kMaxKnots> theta_{};
+  std::array<Interval, kMaxKnots> stats_{};  // interval j between knots j and j+1
+  double lambda_, w_, prior_info_, min_, max_, max_abs_, max_tilt_, max_speed_, max_climb_;
+  double learned_samples_;
+  std::uint64_t used_ = 0;
+};
+
+}  // namespace geaware::control

@@ -1,0 +1,154 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "geaware/control/ground_effect_learner.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "geaware/model/field_check.hpp"
+#include "geaware/model/vehicle_model.hpp"  // model::InvalidParameters
+
+namespace geaware::control {
+
+std::vector<model::FieldError> GroundEffectLearnerParams::validate() const {
+  std::vector<model::FieldError> e;
+  model::FieldChecker c(e);
+  using enum model::LowerBound;
+  if (knots_m.size() < 2 || knots_m.size() > GroundEffectLearner::kMaxKnots) {
+    c.fail("knots_m", std::to_string(knots_m.size()) + " knots",
+           "2 to " + std::to_string(GroundEffectLearner::kMaxKnots) + " heights");
+  }
+  for (std::size_t k = 0; k < knots_m.size(); ++k) {
+    const std::string key = "knots_m[" + std::to_string(k) + "]";
+    if (c.range(key, knots_m[k], 0.0, 100.0, kExclusive, "m") && k > 0 &&
+        !(knots_m[k] > knots_m[k - 1])) {
+      c.fail(key, model::formatValue(knots_m[k]), "a height above knots_m[" + std::to_string(k - 1) + "]");
+    }
+  }
+  c.range("forgetting", forgetting, 0.0, 1.0, kExclusive);
+  c.range("sample_sigma", sample_sigma, 0.0, 10.0, kExclusive);
+  c.range("prior_sigma", prior_sigma, 0.0, 1e3, kExclusive);
+  if (c.finite("min_ratio", min_ratio) && c.finite("max_ratio", max_ratio) && !(min_ratio < max_ratio)) {
+    c.fail("max_ratio", model::formatValue(max_ratio), "above min_ratio = " + model::formatValue(min_ratio));
+  }
+  c.range("max_abs_sample", max_abs_sample, 0.0, 100.0, kExclusive);
+  c.range("max_tilt_rad", max_tilt_rad, 0.0, 1.5, kExclusive, "rad");
+  c.range("max_speed_mps", max_speed_mps, 0.0, 100.0, kExclusive, "m/s");
+  c.range("max_climb_mps", max_climb_mps, 0.0, 100.0, kExclusive, "m/s");
+  c.range("learned_samples", learned_samples, 0.0, 1e9, kInclusive);
+  return e;
+}
+
+namespace {
+
+const GroundEffectLearnerParams& checked(const GroundEffectLearnerParams& p,
+                                         const std::vector<double>& prior) {
+  auto e = p.validate();
+  if (prior.size() != p.knots_m.size()) {
+    e.push_back({"prior", std::to_string(prior.size()) + " values",
+                 "one per knot (" + std::to_string(p.knots_m.size()) + ")"});
+  }
+  for (std::size_t k = 0; k < prior.size(); ++k) {
+    if (!std::isfinite(prior[k])) {
+      e.push_back({"prior[" + std::to_string(k) + "]", model::formatValue(prior[k]), "a finite ratio"});
+    }
+  }
+  if (!e.empty()) throw model::InvalidParameters(std::move(e));
+  return p;
+}
+
+}  // namespace
+
+GroundEffectLearner::GroundEffectLearner(const GroundEffectLearnerParams& params,
+                                         const std::vector<double>& prior_values)
+    : n_(checked(params, prior_values).knots_m.size()),
+      lambda_(params.forgetting),
+      w_(1.0 / (params.sample_sigma * params.sample_sigma)),
+      prior_info_(1.0 / (params.prior_sigma * params.prior_sigma)),
+      min_(params.min_ratio),
+      max_(params.max_ratio),
+      max_abs_(params.max_abs_sample),
+      max_tilt_(params.max_tilt_rad),
+      max_speed_(params.max_speed_mps),
+      max_climb_(params.max_climb_mps),
+      learned_samples_(params.learned_samples) {
+  for (std::size_t k = 0; k < n_; ++k) {
+    h_[k] = params.knots_m[k];
+    prior_[k] = prior_values[k];
+    theta_[k] = std::clamp(prior_values[k], min_, max_);
+  }
+}
+
+LearnerSample GroundEffectLearner::update(double h_m, double f_g, double tilt_rad, double speed_mps,
+                                          double climb_mps) noexcept {
+  if (!(std::isfinite(h_m) && std::isfinite(f_g) && std::isfinite(tilt_rad) &&
+        std::isfinite(speed_mps) && std::isfinite(climb_mps))) {
+    return LearnerSample::kNonFinite;
+  }
+  if (h_m < h_[0] || h_m > h_[n_ - 1]) return LearnerSample::kOutsideKnots;
+  if (std::abs(f_g) > max_abs_) return LearnerSample::kOutlier;
+  if (std::abs(tilt_rad) > max_tilt_) return LearnerSample::kTilted;
+  if (std::abs(speed_mps) > max_speed_) return LearnerSample::kFast;
+  if (std::abs(climb_mps) > max_climb_) return LearnerSample::kClimbing;
+  // The interval [h_j, h_j+1] holding h (the last knot belongs to the last interval).
+  std::size_t j = 0;
+  while (j + 2 < n_ && h_m >= h_[j + 1]) ++j;
+  const double t = (h_m - h_[j]) / (h_[j + 1] - h_[j]);
+  const double p0 = 1.0 - t;
+  const double p1 = t;
+  Interval& s = stats_[j];
+  s.a00 = lambda_ * s.a00 + w_ * p0 * p0;
+  s.a01 = lambda_ * s.a01 + w_ * p0 * p1;
+  s.a11 = lambda_ * s.a11 + w_ * p1 * p1;
+  s.b0 = lambda_ * s.b0 + w_ * p0 * f_g;
+  s.b1 = lambda_ * s.b1 + w_ * p1 * f_g;
+  ++used_;
+  solve();
+  return LearnerSample::kUsed;
+}
+
+// The normal equations are tridiagonal (knot k couples only to k ± 1 through the intervals
+// beside it) and symmetric positive definite (the prior makes every diagonal positive): the
+// Thomas algorithm needs no pivoting.
+void GroundEffectLearner::solve() noexcept {
+  std::array<double, kMaxKnots> diag{}, upper{}, rhs{};
+  for (std::size_t k = 0; k < n_; ++k) {
+    diag[k] = prior_info_;
+    rhs[k] = prior_info_ * prior_[k];
+  }
+  for (std::size_t j = 0; j + 1 < n_; ++j) {
+    const Interval& s = stats_[j];
+    diag[j] += s.a00;
+    diag[j + 1] += s.a11;
+    upper[j] = s.a01;
+    rhs[j] += s.b0;
+    rhs[j + 1] += s.b1;
+  }
+  for (std::size_t k = 1; k < n_; ++k) {
+    const double m = upper[k - 1] / diag[k - 1];
+    diag[k] -= m * upper[k - 1];
+    rhs[k] -= m * rhs[k - 1];
+  }
+  theta_[n_ - 1] = rhs[n_ - 1] / diag[n_ - 1];
+  for (std::size_t k = n_ - 1; k-- > 0;) theta_[k] = (rhs[k] - upper[k] * theta_[k + 1]) / diag[k];
+  for (std::size_t k = 0; k < n_; ++k) theta_[k] = std::clamp(theta_[k], min_, max_);
+}
+
+double GroundEffectLearner::dataSamples(std::size_t k) const noexcept {
+  double info = 0.0;
+  if (k > 0) info += stats_[k - 1].a11;
+  if (k + 1 < n_) info += stats_[k].a00;
+  return info / w_;
+}
+
+double GroundEffectLearner::ratio(double h_m) const noexcept {
+  if (std::isnan(h_m)) return h_m;
+  if (h_m <= h_[0]) return theta_[0];
+  if (h_m >= h_[n_ - 1]) return theta_[n_ - 1];
+  std::size_t j = 0;
+  while (j + 2 < n_ && h_m >= h_[j + 1]) ++j;
+  const double t = (h_m - h_[j]) / (h_[j + 1] - h_[j]);
+  return (1.0 - t) * theta_[j] + t * theta_[j + 1];
+}
+
+}  // namespace geaware::control

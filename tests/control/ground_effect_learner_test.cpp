@@ -1,0 +1,196 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The in-flight ground-effect learner against closed forms: noise-free samples of a curve that
+// is linear between the knots give it back exactly; noisy samples of the paper's F_G converge to
+// it; knots without samples keep what they had (no drift without excitation); gates, bounds,
+// forgetting and the parameter checks.
+
+#include "geaware/control/ground_effect_learner.hpp"
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "geaware/model/vehicle_model.hpp"
+
+namespace geaware::control {
+namespace {
+
+// The paper's closed form F_G(h) = g2/(h² + g1), with the built-in vehicle's order of magnitude.
+double paperCurve(double h) { return 0.0073 / (h * h + 0.018); }
+
+GroundEffectLearnerParams params() {
+  GroundEffectLearnerParams p;
+  return p;
+}
+
+std::vector<double> zeros(const GroundEffectLearnerParams& p) { return std::vector<double>(p.knots_m.size(), 0.0); }
+
+TEST(GroundEffectLearner, NoiseFreeSamplesOfAPiecewiseLinearCurveGiveItBackExactly) {
+  GroundEffectLearnerParams p = params();
+  p.prior_sigma = 1e3;  // a prior with (almost) no weight
+  p.forgetting = 1.0;
+  GroundEffectLearner l(p, zeros(p));
+  std::vector<double> truth;
+  for (double h : p.knots_m) truth.push_back(paperCurve(h));
+  // Two heights per interval determine its two knot values.
+  for (int rep = 0; rep < 400; ++rep) {  // ≥ 200 samples' worth at the end knots
+    for (std::size_t j = 0; j + 1 < p.knots_m.size(); ++j) {
+      for (double t : {0.2, 0.7}) {
+        const double h = p.knots_m[j] + t * (p.knots_m[j + 1] - p.knots_m[j]);
+        const double y = (1.0 - t) * truth[j] + t * truth[j + 1];
+        ASSERT_EQ(l.update(h, y, 0.0, 0.0, 0.0), LearnerSample::kUsed);
+      }
+    }
+  }
+  for (std::size_t k = 0; k < p.knots_m.size(); ++k) {
+    EXPECT_NEAR(l.value(k), truth[k], 1e-6) << "knot " << k;
+    EXPECT_TRUE(l.learned(k)) << k;
+  }
+  EXPECT_NEAR(l.ratio(0.11), 0.5 * (truth[1] + truth[2]), 1e-6);
+}
+
+TEST(GroundEffectLearner, NoisySamplesOfThePapersCurveConverge) {
+  GroundEffectLearnerParams p = params();
+  GroundEffectLearner l(p, zeros(p));  // no model at all to start from
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> height(p.knots_m.front(), p.knots_m.back());
+  std::normal_distribution<double> noise(0.0, p.sample_sigma);
+  for (int i = 0; i < 200000; ++i) {
+    const double h = height(rng);
+    (void)l.update(h, paperCurve(h) + noise(rng), 0.05, 0.3, 0.0);
+  }
+  // The curve is convex between knots, so the best line through an interval sits a little
+  // above its knots: within 10 % (and 0.005) of the curve there, and the interpolated curve
+  // within 15 % over 0.1–0.3 m.
+  for (std::size_t k = 0; k < p.knots_m.size(); ++k) {
+    const double f = paperCurve(p.knots_m[k]);
+    EXPECT_NEAR(l.value(k), f, std::max(0.1 * f, 0.005)) << "knot " << p.knots_m[k] << " m";
+  }
+  for (double h = 0.1; h <= 0.3; h += 0.01) {
+    EXPECT_NEAR(l.ratio(h), paperCurve(h), 0.15 * paperCurve(h)) << h;
+  }
+}
+
+TEST(GroundEffectLearner, KnotsWithoutNewSamplesDoNotDrift) {
+  GroundEffectLearnerParams p = params();
+  GroundEffectLearner l(p, zeros(p));
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> height(p.knots_m.front(), p.knots_m.back());
+  std::normal_distribution<double> noise(0.0, p.sample_sigma);
+  for (int i = 0; i < 50000; ++i) {
+    const double h = height(rng);
+    (void)l.update(h, paperCurve(h) + noise(rng), 0.0, 0.0, 0.0);
+  }
+  std::vector<double> before(l.values(), l.values() + l.knots());
+  // A long hover at 0.30 m (interval 0.28–0.33 m, knots 7 and 8): 100 s at 1 kHz. The interval
+  // forgets only its own past, so every other interval keeps its information and the knots
+  // away from the hover stay where they were.
+  for (int i = 0; i < 100000; ++i) (void)l.update(0.30, paperCurve(0.30) + noise(rng), 0.0, 0.0, 0.0);
+  for (std::size_t k = 0; k < l.knots(); ++k) {
+    if (k >= 6 && k <= 9) continue;
+    EXPECT_NEAR(l.value(k), before[k], 1e-3) << "knot " << p.knots_m[k] << " m drifted";
+  }
+  // The same hover with an unmodelled +0.05 there: learned where it hovered, and passed on to
+  // the other knots only through the intervals that join them, less at every step away.
+  GroundEffectLearner biased = l;
+  for (int i = 0; i < 100000; ++i) (void)biased.update(0.30, paperCurve(0.30) + 0.05 + noise(rng), 0.0, 0.0, 0.0);
+  EXPECT_GT(biased.ratio(0.30), paperCurve(0.30) + 0.03);
+  double previous = std::abs(biased.value(7) - l.value(7));
+  for (std::size_t k = 7; k-- > 3;) {
+    const double change = std::abs(biased.value(k) - l.value(k));
+    EXPECT_LT(change, 0.6 * previous) << "knot " << p.knots_m[k] << " m";
+    previous = change;
+  }
+  // Samples that are all gated out change nothing at all.
+  const std::vector<double> now(l.values(), l.values() + l.knots());
+  for (int i = 0; i < 1000; ++i) (void)l.update(0.15, 0.4, 0.6, 0.0, 0.0);  // tilted
+  for (std::size_t k = 0; k < l.knots(); ++k) EXPECT_EQ(l.value(k), now[k]);
+}
+
+TEST(GroundEffectLearner, WithoutSamplesTheEstimateIsThePriorAndNothingIsLearned) {
+  GroundEffectLearnerParams p = params();
+  std::vector<double> prior;
+  for (double h : p.knots_m) prior.push_back(paperCurve(h));
+  GroundEffectLearner l(p, prior);
+  for (std::size_t k = 0; k < l.knots(); ++k) {
+    EXPECT_EQ(l.value(k), prior[k]);
+    EXPECT_FALSE(l.learned(k));
+    EXPECT_EQ(l.dataSamples(k), 0.0);
+  }
+  EXPECT_EQ(l.used(), 0u);
+  // Samples only in the lowest interval leave the prior of knots two intervals away untouched
+  // up to the coupling through knot 1.
+  for (int i = 0; i < 5000; ++i) (void)l.update(0.09, paperCurve(0.09), 0.0, 0.0, 0.0);
+  EXPECT_TRUE(l.learned(0));
+  EXPECT_TRUE(l.learned(1));
+  EXPECT_FALSE(l.learned(2));
+  EXPECT_NEAR(l.value(5), prior[5], 1e-12);
+}
+
+TEST(GroundEffectLearner, GatesOutliersAndBounds) {
+  GroundEffectLearnerParams p = params();
+  GroundEffectLearner l(p, zeros(p));
+  EXPECT_EQ(l.update(std::nan(""), 0.1, 0, 0, 0), LearnerSample::kNonFinite);
+  EXPECT_EQ(l.update(0.2, INFINITY, 0, 0, 0), LearnerSample::kNonFinite);
+  EXPECT_EQ(l.update(0.05, 0.1, 0, 0, 0), LearnerSample::kOutsideKnots);
+  EXPECT_EQ(l.update(0.9, 0.1, 0, 0, 0), LearnerSample::kOutsideKnots);
+  EXPECT_EQ(l.update(0.2, 5.0, 0, 0, 0), LearnerSample::kOutlier);
+  EXPECT_EQ(l.update(0.2, 0.1, 0.5, 0, 0), LearnerSample::kTilted);
+  EXPECT_EQ(l.update(0.2, 0.1, 0, 3.0, 0), LearnerSample::kFast);
+  EXPECT_EQ(l.update(0.2, 0.1, 0, 0, -1.0), LearnerSample::kClimbing);
+  EXPECT_EQ(l.used(), 0u);
+  // Samples above the upper bound: the estimate stops at it; below zero: at zero.
+  for (int i = 0; i < 5000; ++i) ASSERT_EQ(l.update(0.2, 1.9, 0, 0, 0), LearnerSample::kUsed);
+  EXPECT_EQ(l.value(5), p.max_ratio);
+  for (int i = 0; i < 20000; ++i) (void)l.update(0.45, -1.0, 0, 0, 0);
+  EXPECT_EQ(l.value(10), 0.0);
+  EXPECT_EQ(l.update(0.5, 0.0, 0, 0, 0), LearnerSample::kUsed) << "the last knot is inside";
+}
+
+TEST(GroundEffectLearner, ForgettingFollowsAChange) {
+  GroundEffectLearnerParams p = params();
+  p.forgetting = 0.995;  // a memory of ~200 samples per interval
+  p.prior_sigma = 1.0;   // no model to start from: the prior only regularises
+  GroundEffectLearner l(p, zeros(p));
+  for (int i = 0; i < 5000; ++i) (void)l.update(0.22, 0.10, 0, 0, 0);
+  EXPECT_NEAR(l.ratio(0.22), 0.10, 2e-3);
+  for (int i = 0; i < 3000; ++i) (void)l.update(0.22, 0.20, 0, 0, 0);
+  EXPECT_NEAR(l.ratio(0.22), 0.20, 2e-3);
+  // Without forgetting the same data leave it between the two.
+  p.forgetting = 1.0;
+  GroundEffectLearner m(p, zeros(p));
+  for (int i = 0; i < 5000; ++i) (void)m.update(0.22, 0.10, 0, 0, 0);
+  for (int i = 0; i < 3000; ++i) (void)m.update(0.22, 0.20, 0, 0, 0);
+  EXPECT_NEAR(m.ratio(0.22), (5000 * 0.10 + 3000 * 0.20) / 8000.0, 2e-3);
+}
+
+TEST(GroundEffectLearner, InvalidParametersAreListed) {
+  GroundEffectLearnerParams p = params();
+  p.knots_m = {0.1, 0.1, 0.3};
+  p.forgetting = 1.5;
+  p.sample_sigma = -1.0;
+  p.min_ratio = 1.0;
+  p.max_ratio = 0.5;
+  try {
+    GroundEffectLearner l(p, {0.0, 0.0});
+    FAIL() << "no error";
+  } catch (const model::InvalidParameters& e) {
+    const std::string what = e.what();
+    for (const char* key : {"knots_m[1]", "forgetting", "sample_sigma", "max_ratio", "prior"}) {
+      EXPECT_NE(what.find(key), std::string::npos) << key << " missing from: " << what;
+    }
+  }
+  GroundEffectLearnerParams q = params();
+  q.knots_m.assign(17, 0.0);
+  for (std::size_t k = 0; k < q.knots_m.size(); ++k) q.knots_m[k] = 0.1 + 0.01 * static_cast<double>(k);
+  EXPECT_THROW(GroundEffectLearner(q, zeros(q)), model::InvalidParameters);
+  GroundEffectLearnerParams r = params();
+  std::vector<double> nan_prior = zeros(r);
+  nan_prior[3] = std::nan("");
+  EXPECT_THROW(GroundEffectLearner(r, nan_prior), model::InvalidParameters);
+}
+
+}  // namespace
+}  // namespace geaware::control
