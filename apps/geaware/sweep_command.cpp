@@ -49,7 +49,7 @@ int runSweep(const SweepOptions& o) {
 
   TerminalProgress progress("geaware sweep", o.quiet);
   if (!o.key.empty()) {
-    experiments::prepareSweep(spec, &progress);
+    experiments::prepareSweep(spec, {o.key}, &progress);
     const std::string record = experiments::runSweepFlight(spec, o.key);
     if (!o.out.empty()) experiments::writeSweepFlight(o.out, o.key, record);
     std::cout << record << "\n";
@@ -66,7 +66,7 @@ int runSweep(const SweepOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   std::size_t flown = 0;
   if (!keys.empty()) {
-    experiments::prepareSweep(spec, &progress);
+    experiments::prepareSweep(spec, keys, &progress);
     flown = experiments::runSweepKeys(spec, o.out, keys, threads,
                                       [&](std::size_t done, std::size_t total, const std::string&) {
                                         progress.update(static_cast<double>(done),

@@ -11,7 +11,6 @@
 #include <map>
 #include <memory>
 #include <mutex>
-#include <set>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -211,19 +210,22 @@ FlightScenario sweepFlightScenario(const SweepSpec& spec, const SweepKey& k) {
   return f;
 }
 
-void prepareSweep(const SweepSpec& spec, Progress* progress) {
-  bool neural = false;
-  for (const auto& c : spec.controllers) neural = neural || isNeural(c);
-  std::set<std::string> done;
-  for (const auto& p : spec.cases) {
-    const std::string name = ownWorld(spec, p) ? p.name : "none";
-    if (!done.insert(name).second) continue;
-    if (progress != nullptr && (spec.calibrate || neural)) {
+void prepareSweep(const SweepSpec& spec, const std::vector<std::string>& keys, Progress* progress) {
+  // The worlds these keys fly in, each with whether a neural controller flies there.
+  std::map<std::string, std::pair<std::size_t, bool>> worlds;  // name → (a case of it, neural)
+  for (const auto& key : keys) {
+    const SweepKey k = parseSweepKey(spec, key);
+    const Perturbation& p = spec.cases[k.case_index];
+    auto& w = worlds.try_emplace(ownWorld(spec, p) ? p.name : "none", k.case_index, false).first->second;
+    w.second = w.second || isNeural(spec.controllers[k.controller_index]);
+  }
+  for (const auto& [name, w] : worlds) {
+    if (progress != nullptr && (spec.calibrate || w.second)) {
       progress->message(fmt::format("world '{}':{}{}", name,
                                     spec.calibrate ? " calibration (rigs, scale, hover and drag flights)" : "",
-                                    neural ? " Neural-Lander training" : ""));
+                                    w.second ? " Neural-Lander training" : ""));
     }
-    (void)worldOf(spec, p, neural);
+    (void)worldOf(spec, spec.cases[w.first], w.second);
   }
 }
 

@@ -172,3 +172,38 @@ TEST(SweepRun, AFailingFlightIsReportedWithItsKey) {
   }
   EXPECT_FALSE(ex::sweepFlightDone(d.path(), keys[0]));
 }
+
+TEST(SweepRun, ACalibratedSweepFliesTheRobustnessSuitesFlightBitForBit) {
+  // One cell of `geaware bench --suite robustness` (calibrated once in the default world, then
+  // mass +10 %) and the same flight as a sweep key: the same numbers, to the last bit.
+  const std::string text =
+      "vehicle: builtin\nworld: default\ncalibrate: true\n"
+      "perturbations: [{name: mass+10%}]\ncontrollers: [recommended]\n"
+      "scenarios: [{type: lemniscate, height_m: 0.12, speed_mps: 1.0, half_extent_x_m: 1.5, half_extent_y_m: 0.8}]\n"
+      "seeds: {first: 2, count: 1}\n";
+  const ex::SweepSpec s = ex::parseSweepYaml(text, "cal.yaml", sourceDir());
+  const auto record = geaware::io::Json::parse(
+      ex::runSweepFlight(s, "case=mass+10%/ctl=recommended/scn=lem-0.12m-1mps/seed=2"));
+
+  ex::RobustnessOptions o;
+  o.vehicle = geaware::io::builtinVehicle();
+  o.world = ex::defaultWorld(o.vehicle, true, "");
+  o.cells = {ex::robustnessCells().at(4)};
+  ASSERT_EQ(o.cells[0].name, "mass+10%");
+  o.controllers = {ex::robustnessControllers().back()};
+  ASSERT_EQ(o.controllers[0].name, "recommended");
+  o.conditions = {ex::robustnessConditions().at(0)};
+  o.seeds = 1;
+  o.first_seed = 2;
+  o.jobs = 1;
+  const ex::RobustnessResult r = ex::runRobustness(o);
+  ASSERT_EQ(r.cells.size(), 1u);
+  const ex::SuiteFlight& f = r.cells[0].flights.at(0);
+  EXPECT_EQ(record["struck"], f.struck);
+  EXPECT_EQ(record["rmse_all_cm"].get<double>(), f.rmse_all_cm);
+  EXPECT_EQ(record["rmse_xy_cm"].get<double>(), f.rmse_xy_cm);
+  EXPECT_EQ(record["rmse_z_cm"].get<double>(), f.rmse_z_cm);
+  EXPECT_EQ(record["max_cm"].get<double>(), f.max_cm);
+  ASSERT_TRUE(f.guard_active_s.has_value());
+  EXPECT_EQ(record["guard_active_s"].get<double>(), *f.guard_active_s);
+}

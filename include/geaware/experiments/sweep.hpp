@@ -97,9 +97,10 @@ struct SweepKey {
 /// controller, the trajectory and the seed. The calibrations are computed once per process
 /// and sweep (memoised by the spec's fingerprint; thread-safe).
 [[nodiscard]] FlightScenario sweepFlightScenario(const SweepSpec& spec, const SweepKey& k);
-/// Calibrates (and trains, for a neural controller) every world the sweep needs, now, so that
-/// the flights find them memoised; `progress` gets one message per world.
-void prepareSweep(const SweepSpec& spec, Progress* progress = nullptr);
+/// Calibrates (and trains, for a neural controller) every world that `keys` fly in, now, so
+/// that their flights find them memoised; `progress` gets one message per world.
+void prepareSweep(const SweepSpec& spec, const std::vector<std::string>& keys,
+                  Progress* progress = nullptr);
 
 /// The flight's record: one line of JSON (no newline) with the key, its parts and the suite's
 /// flight metrics (experiments::SuiteFlight), numbers in their shortest round-trip form.
