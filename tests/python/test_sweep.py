@@ -104,3 +104,20 @@ def test_bad_input_names_the_file_and_writes_nothing(cli, spec, tmp_path):
     # --out naming a file is refused before any work.
     r = subprocess.run([cli, "sweep", spec, "--out", spec], capture_output=True, text=True)
     assert r.returncode == 1 and "--out" in r.stderr
+
+
+def test_the_sweep_example_prints_the_means_of_the_merged_records(serial, source_dir, tmp_path):
+    done = subprocess.run([sys.executable, str(source_dir / "examples/python/sweep.py"), str(tmp_path / "ex")],
+                          check=True, capture_output=True, text=True, timeout=300)
+    lines = done.stdout.splitlines()
+    assert lines[0] == f"64 flights, 0 already done, results in {tmp_path / 'ex' / 'results.json'}"
+    assert lines[1].split()[-2:] == ["recommended", "indi:none"]
+    records = json.loads((serial / "results.json").read_text())["records"]
+    assert (tmp_path / "ex" / "results.json").read_bytes() == (serial / "results.json").read_bytes()
+    rows = {line.split()[0]: line.split()[1:] for line in lines[2:]}
+    assert list(rows) == ["none", "mass+10%", "cushion+0.5", "windy"]
+    for case, cells in rows.items():
+        for controller, cell in zip(["recommended", "indi:none"], cells):
+            v = [r["rmse_all_cm"] for r in records
+                 if r["case"] == case and r["controller"] == controller and not r["struck"]]
+            assert cell == f"{sum(v) / len(v):.2f}", (case, controller)
