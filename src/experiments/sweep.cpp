@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include <map>
+#include <numbers>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
@@ -22,6 +23,7 @@
 #include "geaware/experiments/world_setup.hpp"
 #include "geaware/io/json.hpp"
 #include "geaware/io/truth_file.hpp"
+#include "geaware/model/units.hpp"
 
 namespace geaware::experiments {
 namespace {
@@ -207,6 +209,16 @@ FlightScenario sweepFlightScenario(const SweepSpec& spec, const SweepKey& k) {
   f.controller = control::applyParameters(c.params, spec.controller_values);
   if (isNeural(c)) f.residual = w.neural;
   f.seed = k.seed;
+  // A fault case, as the fault suite flies it (fault_suite.cpp).
+  const FaultCase& fault = spec.case_faults.at(k.case_index);
+  f.faults = fault.faults;
+  if (fault.mass_scale != 1.0) {
+    applyPerturbation({"mass", PerturbationKind::kMass, fault.mass_scale - 1.0, {}}, f);
+  }
+  if (fault.low_imu_ranges) {
+    f.eskf.imu_gyro_range_rad_per_s = 250.0 * std::numbers::pi / 180.0;
+    f.eskf.imu_accel_range_m_per_s2 = 4.0 * model::kGravity;
+  }
   return f;
 }
 
@@ -244,9 +256,18 @@ std::string sweepRecord(const SweepSpec& spec, const SweepKey& k, const FlightRe
   j["rmse_z_cm"] = f.rmse_z_cm;
   j["max_cm"] = f.max_cm;
   j["guard_active_s"] = f.guard_active_s ? io::Json(*f.guard_active_s) : io::Json(nullptr);
+  // The fault suite's: the controller cut the motors (kFlagTerminated); throttles the plant
+  // had to replace.
+  j["terminated"] = r.flag_counts[10] > 0;
+  j["non_finite_commands"] = r.throttle_faults;
   j["simulated_s"] = r.simulated_s;
   // Compact, NaN as null, invalid UTF-8 replaced: one line, the same bytes everywhere.
   return j.dump(-1, ' ', false, io::Json::error_handler_t::replace);
+}
+
+std::string sweepCaseMeaning(const SweepSpec& spec, std::size_t i) {
+  const FaultCase& fault = spec.case_faults.at(i);
+  return fault.name.empty() ? spec.cases.at(i).meaning() : fault.meaning;
 }
 
 std::string runSweepFlight(const SweepSpec& spec, const std::string& key) {

@@ -89,7 +89,34 @@ const std::vector<std::pair<std::string, PerturbationKind>>& kindNames() {
   return names;
 }
 
-Perturbation readCase(io::MapReader& m) {
+/// A case of the fault suite by name (`fault: motor 80%`); its name in keys has no '/'.
+Perturbation readFault(io::MapReader& m, FaultCase& fault) {
+  Perturbation p;
+  const std::string name = m.text("fault");
+  std::string names;
+  bool found = false;
+  for (const auto& c : faultCases()) {
+    if (c.name == name) {
+      fault = c;
+      found = true;
+    }
+    names += (names.empty() ? "" : ", ") + c.name;
+  }
+  if (!found && !name.empty()) {
+    m.problem("fault", "got '" + name + "', expected a case of the fault suite (" + names + ")");
+  }
+  std::string default_name = name;
+  for (std::size_t at = default_name.find('/'); at != std::string::npos; at = default_name.find('/')) {
+    default_name.replace(at, 1, " per ");
+  }
+  p.name = m.has("name") ? m.text("name") : default_name;
+  if (m.has("name")) checkName(m, "name", p.name);
+  m.rejectUnknownKeys();
+  return p;
+}
+
+Perturbation readCase(io::MapReader& m, FaultCase& fault) {
+  if (m.has("fault")) return readFault(m, fault);
   Perturbation p;
   if (!m.has("kind")) {
     // One of the robustness suite's cases, by name.
@@ -235,7 +262,10 @@ SweepSpec parseSweepYaml(std::string_view yaml_text, const std::string& source,
 
   auto case_items = root.maps("perturbations");
   if (checkCount(root, "perturbations", case_items.size(), kSweepMaxCases)) {
-    for (auto& m : case_items) s.cases.push_back(readCase(m));
+    for (auto& m : case_items) {
+      s.case_faults.emplace_back();
+      s.cases.push_back(readCase(m, s.case_faults.back()));
+    }
     checkUnique(root, "perturbations", s.cases, [](const Perturbation& p) { return p.name; });
   }
 

@@ -120,7 +120,9 @@ std::string mergeSweepText(const SweepSpec& spec, const fs::path& dir) {
   doc["geaware_version"] = std::string(io::geawareVersion());
   io::Json sweep;
   io::Json cases = io::Json::array();
-  for (const auto& c : spec.cases) cases.push_back({{"name", c.name}, {"meaning", c.meaning()}});
+  for (std::size_t i = 0; i < spec.cases.size(); ++i) {
+    cases.push_back({{"name", spec.cases[i].name}, {"meaning", sweepCaseMeaning(spec, i)}});
+  }
   sweep["cases"] = cases;
   io::Json controllers = io::Json::array();
   for (const auto& c : spec.controllers) controllers.push_back(c.name);

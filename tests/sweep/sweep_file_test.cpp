@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "geaware/experiments/fault_suite.hpp"
 #include "geaware/experiments/robustness.hpp"
 #include "geaware/experiments/sweep.hpp"
 #include "geaware/experiments/table_one.hpp"
@@ -193,4 +194,35 @@ TEST(SweepFile, TheShippedRobustnessSweepIsTheRobustnessSuite) {
   // The suite's cells × seeds: 16 × 7 × 2 × 5.
   EXPECT_EQ(s.flights(), cells.size() * controllers.size() * conditions.size() * 5);
   EXPECT_EQ(s.flights(), 1120u);
+}
+
+TEST(SweepFile, TheShippedFaultSweepIsTheFaultSuite) {
+  const SweepSpec s = geaware::experiments::loadSweepFile(sourceDir() / "config/sweeps/faults.yaml");
+  const auto cases = geaware::experiments::faultCases();
+  const auto controllers = geaware::experiments::faultControllers();
+  const auto conditions = geaware::experiments::faultConditions();
+  ASSERT_EQ(s.cases.size(), cases.size());
+  ASSERT_EQ(s.case_faults.size(), cases.size());
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    EXPECT_EQ(s.case_faults[i].name, cases[i].name);
+    EXPECT_EQ(s.case_faults[i].faults.size(), cases[i].faults.size());
+    EXPECT_EQ(s.cases[i].kind, geaware::experiments::PerturbationKind::kNone);
+    EXPECT_EQ(s.cases[i].name.find('/'), std::string::npos);
+  }
+  EXPECT_EQ(s.cases[9].name, "gyro bias 2° per s");
+  ASSERT_EQ(s.controllers.size(), controllers.size());
+  for (std::size_t i = 0; i < controllers.size(); ++i) EXPECT_EQ(s.controllers[i].name, controllers[i].name);
+  ASSERT_EQ(s.scenarios.size(), conditions.size());
+  for (std::size_t i = 0; i < conditions.size(); ++i) {
+    const auto* l = dynamic_cast<const geaware::traj::Lemniscate*>(s.scenarios[i].trajectory.get());
+    ASSERT_NE(l, nullptr);
+    EXPECT_EQ(l->params().height_m, conditions[i].height_m);
+    EXPECT_EQ(l->params().peak_speed_mps, conditions[i].speed_mps);
+  }
+  EXPECT_EQ(s.seed_count, 3u);
+  EXPECT_EQ(s.flights(), 13u * 3 * 2 * 3);
+  // A fault name that is not the suite's is refused at its line.
+  const std::string t = slurp(sourceDir() / "config/sweeps/faults.yaml");
+  expectProblem(replaced(t, "fault: motor 50%", "fault: motor 40%"), lineOf(t, "motor 50%"), "perturbations[2].fault",
+                "expected a case of the fault suite");
 }

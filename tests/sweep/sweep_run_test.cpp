@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "geaware/control/controller_params.hpp"
+#include "geaware/experiments/fault_suite.hpp"
 #include "geaware/experiments/flight.hpp"
 #include "geaware/experiments/robustness.hpp"
 #include "geaware/experiments/sweep.hpp"
@@ -206,4 +207,38 @@ TEST(SweepRun, ACalibratedSweepFliesTheRobustnessSuitesFlightBitForBit) {
   EXPECT_EQ(record["max_cm"].get<double>(), f.max_cm);
   ASSERT_TRUE(f.guard_active_s.has_value());
   EXPECT_EQ(record["guard_active_s"].get<double>(), *f.guard_active_s);
+}
+
+TEST(SweepRun, AFaultKeyFliesTheFaultSuitesFlightBitForBit) {
+  // `fault: motor 80%` flies what `geaware bench --suite faults` flies for that cell and seed.
+  const std::string text =
+      "vehicle: builtin\nworld: default\ncalibrate: true\n"
+      "perturbations: [{fault: motor 80%}]\ncontrollers: [recommended]\n"
+      "scenarios: [{type: lemniscate, height_m: 0.12, speed_mps: 1.0, half_extent_x_m: 1.5, half_extent_y_m: 0.8}]\n"
+      "seeds: {first: 1, count: 1}\n";
+  const ex::SweepSpec s = ex::parseSweepYaml(text, "fault.yaml", sourceDir());
+  const auto record = geaware::io::Json::parse(
+      ex::runSweepFlight(s, "case=motor 80%/ctl=recommended/scn=lem-0.12m-1mps/seed=1"));
+
+  ex::FaultSuiteOptions o;
+  o.vehicle = geaware::io::builtinVehicle();
+  o.world = ex::defaultWorld(o.vehicle, true, "");
+  o.cases = {ex::faultCases().at(0), ex::faultCases().at(1)};
+  ASSERT_EQ(o.cases[1].name, "motor 80%");
+  o.controllers = {ex::faultControllers().back()};
+  ASSERT_EQ(o.controllers[0].name, "recommended");
+  o.conditions = {ex::faultConditions().at(0)};
+  o.seeds = 1;
+  o.jobs = 1;
+  const ex::FaultSuiteResult r = ex::runFaultSuite(o);
+  ASSERT_EQ(r.cells.size(), 2u);
+  const ex::FaultFlight& f = r.cells[1].flights.at(0);
+  EXPECT_EQ(record["struck"], f.flight.struck);
+  EXPECT_EQ(record["terminated"], f.terminated);
+  EXPECT_EQ(record["non_finite_commands"], f.non_finite_commands);
+  EXPECT_EQ(record["rmse_all_cm"].get<double>(), f.flight.rmse_all_cm);
+  EXPECT_EQ(record["max_cm"].get<double>(), f.flight.max_cm);
+  EXPECT_GT(f.flight.max_cm, 0.0);
+  // And it is not the unbroken flight.
+  EXPECT_NE(record["rmse_all_cm"].get<double>(), r.cells[0].flights.at(0).flight.rmse_all_cm);
 }

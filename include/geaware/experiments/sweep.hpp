@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "geaware/control/controller_params.hpp"
+#include "geaware/experiments/fault_suite.hpp"
 #include "geaware/experiments/flight.hpp"
 #include "geaware/experiments/robustness.hpp"
 #include "geaware/model/vehicle_params.hpp"
@@ -55,6 +56,9 @@ struct SweepSpec {
   bool calibrate = true;  ///< calibrateController in the unperturbed world (law cases: in theirs)
   double start_hover_s = 3.0;  ///< hover before the trajectory [s]
   std::vector<Perturbation> cases;
+  /// Aligned with `cases`: what a `fault:` item breaks (a case of the fault suite: faults
+  /// mid-flight, a mass error, the IMU's ranges); an empty FaultCase for the others.
+  std::vector<FaultCase> case_faults;
   std::vector<SuiteController> controllers;
   std::optional<control::ControllerParams> controller_values;  ///< controller_params file
   std::vector<SweepScenario> scenarios;
@@ -102,9 +106,12 @@ struct SweepKey {
 void prepareSweep(const SweepSpec& spec, const std::vector<std::string>& keys,
                   Progress* progress = nullptr);
 
-/// The flight's record: one line of JSON (no newline) with the key, its parts and the suite's
-/// flight metrics (experiments::SuiteFlight), numbers in their shortest round-trip form.
+/// The flight's record: one line of JSON (no newline) with the key, its parts, the suite's
+/// flight metrics (experiments::SuiteFlight) and the fault suite's `terminated` and
+/// `non_finite_commands`, numbers in their shortest round-trip form.
 [[nodiscard]] std::string sweepRecord(const SweepSpec& spec, const SweepKey& k, const FlightResult& r);
+/// What case `i` changes (Perturbation::meaning, or the fault case's meaning).
+[[nodiscard]] std::string sweepCaseMeaning(const SweepSpec& spec, std::size_t i);
 /// Flies the key and returns its record (a pure function of spec and key).
 [[nodiscard]] std::string runSweepFlight(const SweepSpec& spec, const std::string& key);
 
