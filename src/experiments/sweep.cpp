@@ -222,6 +222,19 @@ FlightScenario sweepFlightScenario(const SweepSpec& spec, const SweepKey& k) {
   return f;
 }
 
+std::vector<ScenarioProblem> sweepScenarioProblems(const SweepSpec& spec, std::size_t scenario_index) {
+  // The unperturbed, uncalibrated world: the calibration moves the belief by a few per cent at
+  // most; what it changes is checked again when the flight starts (its key then names it).
+  FlightScenario f = worldScenario(spec);
+  const SweepScenario& scn = spec.scenarios.at(scenario_index);
+  f.trajectory = scn.trajectory;
+  if (scn.terrain) f.terrain = scn.terrain;
+  if (!spec.controllers.empty()) {
+    f.controller = control::applyParameters(spec.controllers.front().params, spec.controller_values);
+  }
+  return validate(f, ScenarioStage::kFile);
+}
+
 void prepareSweep(const SweepSpec& spec, const std::vector<std::string>& keys, Progress* progress) {
   // The worlds these keys fly in, each with whether a neural controller flies there.
   std::map<std::string, std::pair<std::size_t, bool>> worlds;  // name → (a case of it, neural)

@@ -333,6 +333,16 @@ SweepSpec parseSweepYaml(std::string_view yaml_text, const std::string& source,
     }
   }
   if (!ctx.problems.empty()) throw io::ConfigError(source, std::move(ctx.problems));
+  // Each scenario can be flown (the flight's own checks, in the unperturbed world), before any
+  // calibration or flight.
+  for (std::size_t i = 0; i < s.scenarios.size(); ++i) {
+    for (const auto& e : sweepScenarioProblems(s, i)) {
+      const std::string item = "scenarios[" + std::to_string(i) + "]";
+      ctx.problem(ctx.lineOf(item), item, "cannot be flown: " + e.field + " = " + e.value + " (expected " +
+                                              e.expected + ")");
+    }
+  }
+  if (!ctx.problems.empty()) throw io::ConfigError(source, std::move(ctx.problems));
   return s;
 }
 

@@ -22,6 +22,7 @@
 #include "geaware/experiments/robustness.hpp"
 #include "geaware/experiments/sweep.hpp"
 #include "geaware/experiments/world_setup.hpp"
+#include "geaware/io/config_error.hpp"
 #include "geaware/io/json.hpp"
 #include "geaware/io/vehicle_file.hpp"
 #include "geaware/traj/lemniscate.hpp"
@@ -156,20 +157,39 @@ TEST(SweepRun, MergeNamesTheMissingAndADirectoryKeepsItsSweep) {
 }
 
 TEST(SweepRun, AFailingFlightIsReportedWithItsKey) {
-  // A lemniscate at 6 m/s with 0.3 s ramps is beyond the motors (the flight's feasibility
-  // check): the flight throws, the error names the key.
+  // A lemniscate at 6 m/s with 0.3 s ramps is beyond the motors. The file is refused at the
+  // scenario's line before any work; a spec whose trajectory is swapped after the reading
+  // (as if the calibrated belief made it infeasible) fails at the flight, the error naming the key.
   std::string text = slurp(sourceDir() / "tests/sweep/sweep64.yaml");
   const std::string from = "speed_mps: 1.0,";
+  const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(text.find(from)), '\n');
   text.replace(text.find(from), from.size(), "speed_mps: 6.0, ramp_time_s: 0.3,");
-  const ex::SweepSpec s = ex::parseSweepYaml(text, "low.yaml", sourceDir() / "tests/sweep");
+  try {
+    (void)ex::parseSweepYaml(text, "fast.yaml", sourceDir() / "tests/sweep");
+    FAIL() << "an infeasible scenario was accepted";
+  } catch (const geaware::io::ConfigError& e) {
+    ASSERT_EQ(e.problems().size(), 1u);
+    EXPECT_EQ(e.problems()[0].line, line);
+    EXPECT_EQ(e.problems()[0].key, "scenarios[0]");
+    EXPECT_THAT(e.problems()[0].message, ::testing::HasSubstr("cannot be flown: trajectory = rotor speeds beyond"));
+  }
+  ex::SweepSpec s = spec64();
+  geaware::traj::LemniscateParams lp;
+  lp.height_m = 0.3;
+  lp.peak_speed_mps = 6.0;
+  lp.ramp_time_s = 0.3;
+  lp.half_extent_x_m = 1.0;
+  lp.half_extent_y_m = 0.5;
+  s.scenarios[0].trajectory = std::make_shared<geaware::traj::Lemniscate>(lp);
+  s.fingerprint = "swapped";
   TempDir d("sweep-e");
   ex::prepareSweepDirectory(s, d.path());
-  const std::vector<std::string> keys = {"case=none/ctl=recommended/scn=lem-0.3m-6mps/seed=1"};
+  const std::vector<std::string> keys = {"case=none/ctl=recommended/scn=lem-0.3m-1mps/seed=1"};
   try {
     (void)ex::runSweepKeys(s, d.path(), keys, 1);
     FAIL() << "flew";
   } catch (const std::runtime_error& e) {
-    EXPECT_THAT(e.what(), ::testing::HasSubstr("flight case=none/ctl=recommended/scn=lem-0.3m-6mps/seed=1: "));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("flight case=none/ctl=recommended/scn=lem-0.3m-1mps/seed=1: "));
   }
   EXPECT_FALSE(ex::sweepFlightDone(d.path(), keys[0]));
 }

@@ -101,6 +101,11 @@ struct SweepKey {
 /// controller, the trajectory and the seed. The calibrations are computed once per process
 /// and sweep (memoised by the spec's fingerprint; thread-safe).
 [[nodiscard]] FlightScenario sweepFlightScenario(const SweepSpec& spec, const SweepKey& k);
+/// The problems of scenario `scenario_index` flown in the sweep's unperturbed world with its
+/// first controller, uncalibrated (validate(…, kFile): rates, the trajectory's duration and
+/// feasibility); loadSweepFile reports them at the scenario's line before any work.
+[[nodiscard]] std::vector<ScenarioProblem> sweepScenarioProblems(const SweepSpec& spec,
+                                                                 std::size_t scenario_index);
 /// Calibrates (and trains, for a neural controller) every world that `keys` fly in, now, so
 /// that their flights find them memoised; `progress` gets one message per world.
 void prepareSweep(const SweepSpec& spec, const std::vector<std::string>& keys,
