@@ -121,3 +121,34 @@ def test_the_sweep_example_prints_the_means_of_the_merged_records(serial, source
             v = [r["rmse_all_cm"] for r in records
                  if r["case"] == case and r["controller"] == controller and not r["struck"]]
             assert cell == f"{sum(v) / len(v):.2f}", (case, controller)
+
+
+def test_a_dask_scheduler_and_workers_started_as_on_other_machines(serial, spec, tmp_path):
+    """`dask-scheduler` and `dask-worker` as docs/sweeps.md starts them on other machines (here on
+    this one, over TCP), and `--scheduler ADDRESS`: the same bytes."""
+    file = tmp_path / "scheduler.json"
+    env = dict(os.environ)
+    procs = [subprocess.Popen(["dask-scheduler", "--scheduler-file", str(file), "--host", "127.0.0.1",
+                               "--no-dashboard"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)]
+    try:
+        deadline = time.monotonic() + 60
+        while not file.exists() and time.monotonic() < deadline:
+            time.sleep(0.1)
+        address = json.loads(file.read_text())["address"]
+        assert address.startswith("tcp://127.0.0.1:")
+        procs.append(subprocess.Popen(["dask-worker", address, "--nthreads", "1", "--nworkers", "2",
+                                       "--no-dashboard"], env=env, stdout=subprocess.DEVNULL,
+                                      stderr=subprocess.DEVNULL))
+        r = python_sweep(spec, tmp_path / "cluster", "--scheduler", address)
+        assert r.returncode == 0, r.stderr
+        assert "flown 64" in r.stdout
+        assert (tmp_path / "cluster" / "results.json").read_bytes() == (serial / "results.json").read_bytes()
+    finally:
+        for p in reversed(procs):
+            p.send_signal(signal.SIGTERM)
+        for p in reversed(procs):
+            try:
+                p.wait(timeout=30)
+            except subprocess.TimeoutExpired:
+                p.kill()
+                p.wait()
