@@ -61,6 +61,36 @@ Eigen::Matrix3d attitudeFrom(const Eigen::Vector3d& z_des, double yaw) {
   return R;
 }
 
+bool learning(const ControllerParams& p) { return p.learn_ground_effect != GroundEffectLearning::kOff; }
+
+/// The learner's starting curve at its knots: the vehicle file's F_G, or none at all.
+std::vector<double> learnerPrior(const model::VehicleModel& vehicle, const ControllerParams& p) {
+  std::vector<double> prior;
+  for (const double h : p.learner.knots_m) {
+    prior.push_back(p.learn_ground_effect == GroundEffectLearning::kFromVehicle
+                        ? vehicle.groundEffect().thrustRatio(h)
+                        : 0.0);
+  }
+  return prior;
+}
+
+/// The vehicle with F_G as a table on the learner's knots, at the prior (learning on only).
+model::VehicleModel learningVehicle(const model::VehicleModel& vehicle, const ControllerParams& p) {
+  model::VehicleParams v = vehicle.params();
+  v.additional_thrust.table.heights_m = p.learner.knots_m;
+  v.additional_thrust.table.values = learnerPrior(vehicle, p);
+  return model::VehicleModel(std::move(v));
+}
+
+model::GroundEffectModel groundEffectFor(const model::VehicleModel& vehicle, const ControllerParams& p) {
+  return learning(p) ? learningVehicle(vehicle, p).groundEffect() : vehicle.groundEffect();
+}
+
+flatness::FlatMap referenceMapFor(const model::VehicleModel& vehicle, const ControllerParams& p) {
+  return learning(p) ? flatness::FlatMap(learningVehicle(vehicle, p), referenceTerms(p))
+                     : flatness::FlatMap(vehicle, referenceTerms(p));
+}
+
 }  // namespace
 
 Controller::Controller(const model::VehicleModel& vehicle, ControllerParams params,
@@ -69,20 +99,25 @@ Controller::Controller(const model::VehicleModel& vehicle, ControllerParams para
       residual_(std::move(residual)),
       mass_kg_(vehicle.params().mass_kg),
       inertia_kgm2_(vehicle.params().inertia_kgm2),
-      ground_effect_(vehicle.groundEffect()),
+      ground_effect_(groundEffectFor(vehicle, params_)),
       drag_(vehicle.drag()),
       mixer_(vehicle.mixer()),
       throttle_curve_(vehicle.throttleCurve()),
       k_T_N_per_rpm2_(vehicle.params().rotor.k_T_N_per_rpm2),
       k_I_Nm_per_rpm2_(vehicle.params().rotor.k_I_Nm_per_rpm2),
       J_R_kgm2_(vehicle.params().rotor.J_R_kgm2),
-      reference_map_(vehicle, referenceTerms(params_)),
+      reference_map_(referenceMapFor(vehicle, params_)),
       dt_s_(1.0 / params_.rate_hz),
       min_rotor_plane_height_m_(vehicle.params().min_rotor_plane_height_m),
       arm_m_(0.5 * vehicle.params().diagonal_rotor_distance_m),
       mem_(params_.filter_cutoff_hz, params_.rate_hz, kFarFromGroundM) {
   if (params_.acceleration == AccelerationCompensation::kNeural && !residual_) {
     throw std::invalid_argument("acceleration compensation 'neural' needs a residual-force model");
+  }
+  if (learning(params_)) {
+    GroundEffectLearnerParams lp = params_.learner;
+    if (params_.learn_ground_effect == GroundEffectLearning::kFromNothing) lp.prior_sigma = lp.no_model_prior_sigma;
+    learner_.emplace(lp, learnerPrior(vehicle, params_));
   }
 }
 
@@ -169,6 +204,7 @@ Controller::Measured Controller::measure(const ControllerInput& in,
   const Eigen::Vector3d a_meas_W = R * in.accel_B - Eigen::Vector3d(0.0, 0.0, kGravity);
   m.a_f = mem_.accel_filter_.update(a_meas_W);
   m.f_f = mem_.thrust_vector_filter_.update(wrench_meas(0) / mass_kg_ * R.col(2));
+  mem_.thrust_acc_f_mps2_ = m.f_f.norm();
   return m;
 }
 
@@ -384,7 +420,24 @@ ControllerOutput Controller::update(const ControllerInput& in) noexcept {
   }
   if ((out.flags & kFlagReferenceInvalid) != 0) mem_.last_flags_ = out.flags;
   monitorMotors(in, out);
+  if (learner_) learnGroundEffect(in);
   return out;
+}
+
+void Controller::learnGroundEffect(const ControllerInput& in) noexcept {
+  // The paper's flight estimate F̃_G = m·z_Wᵀ·ã_ext/T_f, with the thrust filtered as the
+  // observer filters it, at the height the ranger measured this tick.
+  if (!(in.external_accel_valid && in.height_valid && in.external_accel_W.allFinite())) return;
+  const double thrust_acc = mem_.thrust_acc_f_mps2_;
+  if (!(thrust_acc > 0.5 * kGravity)) return;  // not carried by the rotors
+  const double cos_tilt = in.estimate.q_WB.normalized().toRotationMatrix()(2, 2);
+  const double tilt = std::acos(std::clamp(cos_tilt, -1.0, 1.0));
+  const double f_g = in.external_accel_W.z() / thrust_acc;
+  if (learner_->update(in.height_m, f_g, tilt, in.estimate.v_W.head<2>().norm(), in.estimate.v_W.z()) ==
+      LearnerSample::kUsed) {
+    ground_effect_.setThrustTableValues(learner_->values());
+    reference_map_.setThrustTableValues(learner_->values());
+  }
 }
 
 

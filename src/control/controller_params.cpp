@@ -85,6 +85,14 @@ void validateAdditions(const ControllerParams& p, model::FieldChecker& c) {
   c.range("rotor_speed_ki_per_s", p.rotor_speed_ki_per_s, 0.0, 100.0, kInclusive, "1/s");
   c.range("rotor_speed_limit_throttle", p.rotor_speed_limit_throttle, 0.0, 1.0, kInclusive, "throttle");
   c.range("rotor_speed_lag_s", p.rotor_speed_lag_s, 0.0, 1.0, kInclusive, "s");
+  if (p.learn_ground_effect != GroundEffectLearning::kOff) {
+    if (p.acceleration != AccelerationCompensation::kModel) {
+      c.fail("learn_ground_effect", "on",
+             std::string("off with acceleration '") + toString(p.acceleration) +
+                 "': the learned F_G is fed forward by 'model' only");
+    }
+    for (auto& e : p.learner.validate()) c.fail("learner." + e.field, e.value, e.expected);
+  }
 }
 
 }  // namespace
@@ -118,7 +126,8 @@ std::vector<model::FieldError> ControllerParams::validate() const {
 }
 
 bool ControllerParams::hasAdditions() const noexcept {
-  return dob_time_constant_s > 0.0 || k_i_per_s3.any() || clearance_guard || rotor_speed_ki_per_s > 0.0;
+  return dob_time_constant_s > 0.0 || k_i_per_s3.any() || clearance_guard || rotor_speed_ki_per_s > 0.0 ||
+         learn_ground_effect != GroundEffectLearning::kOff;
 }
 
 ControllerParams recommendedControllerParams() {
@@ -156,7 +165,8 @@ bool sameConfiguration(const ControllerParams& p, const ControllerParams& q) {
          p.guard_brake_mps2 == q.guard_brake_mps2 &&
          p.guard_reaction_time_s == q.guard_reaction_time_s && p.guard_rate_per_s == q.guard_rate_per_s &&
          p.rotor_speed_ki_per_s == q.rotor_speed_ki_per_s &&
-         p.rotor_speed_limit_throttle == q.rotor_speed_limit_throttle && p.rotor_speed_lag_s == q.rotor_speed_lag_s;
+         p.rotor_speed_limit_throttle == q.rotor_speed_limit_throttle && p.rotor_speed_lag_s == q.rotor_speed_lag_s &&
+         p.learn_ground_effect == q.learn_ground_effect;
 }
 
 /// Copies `q`'s switches and additions into `p`.
@@ -175,23 +185,44 @@ void setConfiguration(ControllerParams& p, const ControllerParams& q) {
   p.rotor_speed_ki_per_s = q.rotor_speed_ki_per_s;
   p.rotor_speed_limit_throttle = q.rotor_speed_limit_throttle;
   p.rotor_speed_lag_s = q.rotor_speed_lag_s;
+  p.learn_ground_effect = q.learn_ground_effect;
 }
 
 }  // namespace
 
 std::string configurationName(const ControllerParams& p) {
-  if (sameConfiguration(p, recommendedControllerParams())) return "recommended";
+  const char* learn = p.learn_ground_effect == GroundEffectLearning::kFromVehicle   ? "+learn"
+                      : p.learn_ground_effect == GroundEffectLearning::kFromNothing ? "+learn0"
+                                                                                     : "";
+  ControllerParams unlearned = p;
+  unlearned.learn_ground_effect = GroundEffectLearning::kOff;
+  if (sameConfiguration(unlearned, recommendedControllerParams())) return std::string("recommended") + learn;
   std::string name = std::string(toString(p.acceleration)) + ":" + toString(p.torque);
   if (p.dob_time_constant_s > 0.0) name += "+dob";
   if (p.k_i_per_s3.any()) name += "+integral";
   if (p.clearance_guard) name += "+guard";
   if (p.rotor_speed_ki_per_s > 0.0) name += "+speedloop";
-  return name;
+  return name + learn;
 }
 
-bool parseConfiguration(const std::string& text, ControllerParams& p) {
+bool parseConfiguration(const std::string& text_with_learning, ControllerParams& p) {
+  // A trailing "+learn" / "+learn0": F_G learned in flight, from the vehicle file's or from none.
+  std::string text = text_with_learning;
+  GroundEffectLearning learn = GroundEffectLearning::kOff;
+  const auto endsWith = [&](const std::string& suffix) {
+    return text.size() > suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+  };
+  if (endsWith("+learn0")) {
+    learn = GroundEffectLearning::kFromNothing;
+    text.resize(text.size() - 7);
+  } else if (endsWith("+learn")) {
+    learn = GroundEffectLearning::kFromVehicle;
+    text.resize(text.size() - 6);
+  }
   if (text == "recommended") {
-    setConfiguration(p, recommendedControllerParams());
+    ControllerParams q = recommendedControllerParams();
+    q.learn_ground_effect = learn;
+    setConfiguration(p, q);
     return true;
   }
   const auto colon = text.find(':');
@@ -200,6 +231,7 @@ bool parseConfiguration(const std::string& text, ControllerParams& p) {
       !parse(text.substr(colon + 1), q.torque)) {
     return false;
   }
+  q.learn_ground_effect = learn;
   setConfiguration(p, q);
   return true;
 }

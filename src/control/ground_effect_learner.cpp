@@ -28,6 +28,7 @@ std::vector<model::FieldError> GroundEffectLearnerParams::validate() const {
   c.range("forgetting", forgetting, 0.0, 1.0, kExclusive);
   c.range("sample_sigma", sample_sigma, 0.0, 10.0, kExclusive);
   c.range("prior_sigma", prior_sigma, 0.0, 1e3, kExclusive);
+  c.range("no_model_prior_sigma", no_model_prior_sigma, 0.0, 1e3, kExclusive);
   if (c.finite("min_ratio", min_ratio) && c.finite("max_ratio", max_ratio) && !(min_ratio < max_ratio)) {
     c.fail("max_ratio", model::formatValue(max_ratio), "above min_ratio = " + model::formatValue(min_ratio));
   }
@@ -36,6 +37,13 @@ std::vector<model::FieldError> GroundEffectLearnerParams::validate() const {
   c.range("max_speed_mps", max_speed_mps, 0.0, 100.0, kExclusive, "m/s");
   c.range("max_climb_mps", max_climb_mps, 0.0, 100.0, kExclusive, "m/s");
   c.range("learned_samples", learned_samples, 0.0, 1e9, kInclusive);
+  if (c.range("far_height_m", far_height_m, 0.0, 1e3, kExclusive, "m") && !knots_m.empty() &&
+      !(far_height_m > knots_m.back())) {
+    c.fail("far_height_m", model::formatValue(far_height_m),
+           "a height above the last knot (" + model::formatValue(knots_m.back()) + " m)");
+  }
+  c.range("offset_samples", offset_samples, 1.0, 1e9, kInclusive);
+  c.range("offset_sigma", offset_sigma, 0.0, 1e3, kExclusive);
   return e;
 }
 
@@ -71,7 +79,10 @@ GroundEffectLearner::GroundEffectLearner(const GroundEffectLearnerParams& params
       max_tilt_(params.max_tilt_rad),
       max_speed_(params.max_speed_mps),
       max_climb_(params.max_climb_mps),
-      learned_samples_(params.learned_samples) {
+      learned_samples_(params.learned_samples),
+      far_height_m_(params.far_height_m),
+      far_lambda_(1.0 - 1.0 / params.offset_samples),
+      offset_prior_info_(1.0 / (params.offset_sigma * params.offset_sigma)) {
   for (std::size_t k = 0; k < n_; ++k) {
     h_[k] = params.knots_m[k];
     prior_[k] = prior_values[k];
@@ -85,12 +96,29 @@ LearnerSample GroundEffectLearner::update(double h_m, double f_g, double tilt_ra
         std::isfinite(speed_mps) && std::isfinite(climb_mps))) {
     return LearnerSample::kNonFinite;
   }
-  if (h_m < h_[0] || h_m > h_[n_ - 1]) return LearnerSample::kOutsideKnots;
+  const bool far = h_m >= far_height_m_;
+  if (!far && (h_m < h_[0] || h_m > h_[n_ - 1])) return LearnerSample::kOutsideKnots;
   if (std::abs(f_g) > max_abs_) return LearnerSample::kOutlier;
   if (std::abs(tilt_rad) > max_tilt_) return LearnerSample::kTilted;
   if (std::abs(speed_mps) > max_speed_) return LearnerSample::kFast;
   if (std::abs(climb_mps) > max_climb_) return LearnerSample::kClimbing;
-  // The interval [h_j, h_j+1] holding h (the last knot belongs to the last interval).
+  if (far) {
+    // y = θ_N·(h_N/h)² + b: the curve's inverse-square tail (as model::HeightTable continues a
+    // table) plus the offset.
+    const double r = h_[n_ - 1] / h_m;
+    const double r2 = r * r;
+    Far& s = far_;
+    s.rr = far_lambda_ * s.rr + w_ * r2 * r2;
+    s.rb = far_lambda_ * s.rb + w_ * r2;
+    s.bb = far_lambda_ * s.bb + w_;
+    s.ry = far_lambda_ * s.ry + w_ * r2 * f_g;
+    s.by = far_lambda_ * s.by + w_ * f_g;
+    ++offset_n_;
+    solve();
+    return LearnerSample::kOffset;
+  }
+  // y = (1−t)·θ_j + t·θ_j+1 + b in the interval [h_j, h_j+1] holding h (the last knot belongs to
+  // the last interval).
   std::size_t j = 0;
   while (j + 2 < n_ && h_m >= h_[j + 1]) ++j;
   const double t = (h_m - h_[j]) / (h_[j + 1] - h_[j]);
@@ -100,18 +128,43 @@ LearnerSample GroundEffectLearner::update(double h_m, double f_g, double tilt_ra
   s.a00 = lambda_ * s.a00 + w_ * p0 * p0;
   s.a01 = lambda_ * s.a01 + w_ * p0 * p1;
   s.a11 = lambda_ * s.a11 + w_ * p1 * p1;
+  s.c0 = lambda_ * s.c0 + w_ * p0;
+  s.c1 = lambda_ * s.c1 + w_ * p1;
+  s.cc = lambda_ * s.cc + w_;
   s.b0 = lambda_ * s.b0 + w_ * p0 * f_g;
   s.b1 = lambda_ * s.b1 + w_ * p1 * f_g;
+  s.cy = lambda_ * s.cy + w_ * f_g;
   ++used_;
   solve();
   return LearnerSample::kUsed;
 }
 
-// The normal equations are tridiagonal (knot k couples only to k ± 1 through the intervals
-// beside it) and symmetric positive definite (the prior makes every diagonal positive): the
-// Thomas algorithm needs no pivoting.
+namespace {
+
+/// Thomas algorithm for the symmetric tridiagonal T (diag, upper) against one right-hand side.
+void thomas(std::size_t n, const double* diag, const double* upper, const double* rhs, double* x) noexcept {
+  std::array<double, GroundEffectLearner::kMaxKnots> d{}, r{};
+  d[0] = diag[0];
+  r[0] = rhs[0];
+  for (std::size_t k = 1; k < n; ++k) {
+    const double m = upper[k - 1] / d[k - 1];
+    d[k] = diag[k] - m * upper[k - 1];
+    r[k] = rhs[k] - m * r[k - 1];
+  }
+  x[n - 1] = r[n - 1] / d[n - 1];
+  for (std::size_t k = n - 1; k-- > 0;) x[k] = (r[k] - upper[k] * x[k + 1]) / d[k];
+}
+
+}  // namespace
+
+// The normal equations in (θ, b): a tridiagonal block for θ (knot k couples only to k ± 1
+// through the intervals beside it), bordered by the offset's row and column. Symmetric positive
+// definite (the priors make every diagonal positive), so the bordered system is solved by two
+// Thomas sweeps and the Schur complement, without pivoting.
 void GroundEffectLearner::solve() noexcept {
-  std::array<double, kMaxKnots> diag{}, upper{}, rhs{};
+  std::array<double, kMaxKnots> diag{}, upper{}, rhs{}, u{}, x{}, z{};
+  double d_b = offset_prior_info_;
+  double s_b = 0.0;
   for (std::size_t k = 0; k < n_; ++k) {
     diag[k] = prior_info_;
     rhs[k] = prior_info_ * prior_[k];
@@ -123,15 +176,30 @@ void GroundEffectLearner::solve() noexcept {
     upper[j] = s.a01;
     rhs[j] += s.b0;
     rhs[j + 1] += s.b1;
+    u[j] += s.c0;
+    u[j + 1] += s.c1;
+    d_b += s.cc;
+    s_b += s.cy;
   }
-  for (std::size_t k = 1; k < n_; ++k) {
-    const double m = upper[k - 1] / diag[k - 1];
-    diag[k] -= m * upper[k - 1];
-    rhs[k] -= m * rhs[k - 1];
+  diag[n_ - 1] += far_.rr;
+  u[n_ - 1] += far_.rb;
+  rhs[n_ - 1] += far_.ry;
+  d_b += far_.bb;
+  s_b += far_.by;
+  thomas(n_, diag.data(), upper.data(), rhs.data(), x.data());
+  if (offset_n_ == 0) {  // nothing separates an offset from the curve yet: b = 0
+    offset_ = 0.0;
+    for (std::size_t k = 0; k < n_; ++k) theta_[k] = std::clamp(x[k], min_, max_);
+    return;
   }
-  theta_[n_ - 1] = rhs[n_ - 1] / diag[n_ - 1];
-  for (std::size_t k = n_ - 1; k-- > 0;) theta_[k] = (rhs[k] - upper[k] * theta_[k + 1]) / diag[k];
-  for (std::size_t k = 0; k < n_; ++k) theta_[k] = std::clamp(theta_[k], min_, max_);
+  thomas(n_, diag.data(), upper.data(), u.data(), z.data());
+  double ux = 0.0, uz = 0.0;
+  for (std::size_t k = 0; k < n_; ++k) {
+    ux += u[k] * x[k];
+    uz += u[k] * z[k];
+  }
+  offset_ = (s_b - ux) / (d_b - uz);
+  for (std::size_t k = 0; k < n_; ++k) theta_[k] = std::clamp(x[k] - z[k] * offset_, min_, max_);
 }
 
 double GroundEffectLearner::dataSamples(std::size_t k) const noexcept {

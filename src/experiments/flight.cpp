@@ -251,6 +251,18 @@ class FlightLoop {
       static_assert(control::kFlagClearanceGuard == (1u << 7));
       result_.guard_active_s = static_cast<double>(result_.flag_counts[7]) / s_.controller.rate_hz;
     }
+    if (controller_ && controller_->learner() != nullptr) {
+      const control::GroundEffectLearner& l = *controller_->learner();
+      LearnedGroundEffect g;
+      for (std::size_t k = 0; k < l.knots(); ++k) {
+        g.heights_m.push_back(l.knot_m(k));
+        g.f_g.push_back(l.value(k));
+        g.learned.push_back(l.learned(k));
+      }
+      g.offset = l.offset();
+      g.samples = l.used();
+      result_.learned_ground_effect = std::move(g);
+    }
     result_.estimation.eskf = eskf_->counters();
     result_.estimation.height_rmse_m = est_h_.value();
     result_.simulated_s = plant_.state().t_s;
@@ -297,6 +309,16 @@ class FlightLoop {
 };
 
 }  // namespace
+
+double LearnedGroundEffect::ratio(double h_m) const noexcept {
+  if (heights_m.empty() || std::isnan(h_m)) return std::nan("");
+  if (h_m <= heights_m.front()) return f_g.front();
+  if (h_m >= heights_m.back()) return f_g.back();
+  std::size_t j = 0;
+  while (j + 2 < heights_m.size() && h_m >= heights_m[j + 1]) ++j;
+  const double t = (h_m - heights_m[j]) / (heights_m[j + 1] - heights_m[j]);
+  return (1.0 - t) * f_g[j] + t * f_g[j + 1];
+}
 
 FlightResult runFlight(const FlightScenario& s, FlightObserver* observer) {
   if (auto problems = validate(s); !problems.empty()) throw InvalidScenario(std::move(problems));

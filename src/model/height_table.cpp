@@ -37,32 +37,39 @@ HeightTable::HeightTable(std::vector<double> heights_m, std::vector<double> valu
                                   " is not finite, not positive or not above the previous one");
     }
   }
-  std::vector<double> step(n - 1);
-  std::vector<double> delta(n - 1);
-  for (std::size_t k = 0; k + 1 < n; ++k) {
-    step[k] = h_[k + 1] - h_[k];
-    delta[k] = (v_[k + 1] - v_[k]) / step[k];
-  }
   d_.assign(n, 0.0);
+  computeSlopes();
+}
+
+void HeightTable::setValues(const double* values) noexcept {
+  for (std::size_t i = 0; i < v_.size(); ++i) v_[i] = values[i];
+  computeSlopes();
+}
+
+void HeightTable::computeSlopes() noexcept {
+  const std::size_t n = h_.size();
+  const auto step = [&](std::size_t k) { return h_[k + 1] - h_[k]; };
+  const auto delta = [&](std::size_t k) { return (v_[k + 1] - v_[k]) / step(k); };
+  std::fill(d_.begin(), d_.end(), 0.0);
   // Interior knots: the weighted harmonic mean of the neighbouring secants when they have the
   // same sign, 0 at a local extremum of the data (Fritsch & Butland).
   for (std::size_t k = 1; k + 1 < n; ++k) {
-    const double a = delta[k - 1];
-    const double b = delta[k];
+    const double a = delta(k - 1);
+    const double b = delta(k);
     if (sign(a) == 0 || sign(a) != sign(b)) continue;
-    const double w1 = 2.0 * step[k] + step[k - 1];
-    const double w2 = step[k] + 2.0 * step[k - 1];
+    const double w1 = 2.0 * step(k) + step(k - 1);
+    const double w2 = step(k) + 2.0 * step(k - 1);
     d_[k] = (w1 + w2) / (w1 / a + w2 / b);
   }
   if (n == 2) {
-    d_[0] = delta[0];
+    d_[0] = delta(0);
   } else {
     // First knot: the three-point one-sided estimate, limited.
-    const double d0 = ((2.0 * step[0] + step[1]) * delta[0] - step[0] * delta[1]) / (step[0] + step[1]);
-    d_[0] = limitEndSlope(d0, delta[0]);
+    const double d0 = ((2.0 * step(0) + step(1)) * delta(0) - step(0) * delta(1)) / (step(0) + step(1));
+    d_[0] = limitEndSlope(d0, delta(0));
   }
   // Last knot: the slope of the inverse-square tail, limited.
-  d_[n - 1] = limitEndSlope(-2.0 * v_[n - 1] / h_[n - 1], delta[n - 2]);
+  d_[n - 1] = limitEndSlope(-2.0 * v_[n - 1] / h_[n - 1], delta(n - 2));
 }
 
 std::size_t HeightTable::interval(double h_m) const noexcept {

@@ -141,6 +141,9 @@ std::vector<Config> everyConfiguration() {
   ControllerParams rec_none = recommendedControllerParams();
   rec_none.acceleration = AccelerationCompensation::kNone;
   configs.push_back({"none:model_indi+dob+integral+guard", rec_none});
+  ControllerParams learning = recommendedControllerParams();
+  learning.learn_ground_effect = GroundEffectLearning::kFromNothing;  // F_G learned in flight
+  configs.push_back({"recommended+learn0", learning});
   return configs;
 }
 

@@ -135,7 +135,7 @@ TEST(GroundEffectLearner, GatesOutliersAndBounds) {
   EXPECT_EQ(l.update(std::nan(""), 0.1, 0, 0, 0), LearnerSample::kNonFinite);
   EXPECT_EQ(l.update(0.2, INFINITY, 0, 0, 0), LearnerSample::kNonFinite);
   EXPECT_EQ(l.update(0.05, 0.1, 0, 0, 0), LearnerSample::kOutsideKnots);
-  EXPECT_EQ(l.update(0.9, 0.1, 0, 0, 0), LearnerSample::kOutsideKnots);
+  EXPECT_EQ(l.update(0.6, 0.1, 0, 0, 0), LearnerSample::kOutsideKnots);
   EXPECT_EQ(l.update(0.2, 5.0, 0, 0, 0), LearnerSample::kOutlier);
   EXPECT_EQ(l.update(0.2, 0.1, 0.5, 0, 0), LearnerSample::kTilted);
   EXPECT_EQ(l.update(0.2, 0.1, 0, 3.0, 0), LearnerSample::kFast);
@@ -147,6 +147,32 @@ TEST(GroundEffectLearner, GatesOutliersAndBounds) {
   for (int i = 0; i < 20000; ++i) (void)l.update(0.45, -1.0, 0, 0, 0);
   EXPECT_EQ(l.value(10), 0.0);
   EXPECT_EQ(l.update(0.5, 0.0, 0, 0, 0), LearnerSample::kUsed) << "the last knot is inside";
+}
+
+TEST(GroundEffectLearner, AnOffsetSeenFarFromTheGroundIsNotLearnedAsGroundEffect) {
+  // A vehicle 6 % heavier than its file: the flight estimate is −0.06 everywhere, plus F_G near
+  // the ground. Far samples (≥ 0.8 m) find the offset; the curve is learned without it.
+  GroundEffectLearnerParams p = params();
+  p.prior_sigma = p.no_model_prior_sigma;  // no model to start from, as the controller's "+learn0"
+  GroundEffectLearner l(p, zeros(p));
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> noise(0.0, p.sample_sigma);
+  // Far away the sample is the curve's tail plus the offset.
+  for (int i = 0; i < 2000; ++i) {
+    ASSERT_EQ(l.update(1.2, paperCurve(1.2) - 0.06 + noise(rng), 0, 0, 0), LearnerSample::kOffset);
+  }
+  // One far height alone cannot tell the tail θ_N·(h_N/h)² from the offset: the curve stays at
+  // its bound (0) until samples among the knots come.
+  EXPECT_EQ(l.ratio(0.3), 0.0);
+  EXPECT_EQ(l.offsetSamples(), 2000u);
+  EXPECT_EQ(l.used(), 0u);
+  std::uniform_real_distribution<double> height(p.knots_m.front(), p.knots_m.back());
+  for (int i = 0; i < 100000; ++i) {
+    const double h = height(rng);
+    (void)l.update(h, paperCurve(h) - 0.06 + noise(rng), 0, 0, 0);
+  }
+  for (double h = 0.1; h <= 0.3; h += 0.02) EXPECT_NEAR(l.ratio(h), paperCurve(h), 0.15 * paperCurve(h)) << h;
+  EXPECT_NEAR(l.offset(), -0.06, 0.01);
 }
 
 TEST(GroundEffectLearner, ForgettingFollowsAChange) {
@@ -169,6 +195,7 @@ TEST(GroundEffectLearner, ForgettingFollowsAChange) {
 TEST(GroundEffectLearner, InvalidParametersAreListed) {
   GroundEffectLearnerParams p = params();
   p.knots_m = {0.1, 0.1, 0.3};
+  p.far_height_m = 0.2;
   p.forgetting = 1.5;
   p.sample_sigma = -1.0;
   p.min_ratio = 1.0;
@@ -178,7 +205,7 @@ TEST(GroundEffectLearner, InvalidParametersAreListed) {
     FAIL() << "no error";
   } catch (const model::InvalidParameters& e) {
     const std::string what = e.what();
-    for (const char* key : {"knots_m[1]", "forgetting", "sample_sigma", "max_ratio", "prior"}) {
+    for (const char* key : {"knots_m[1]", "forgetting", "sample_sigma", "max_ratio", "prior", "far_height_m"}) {
       EXPECT_NE(what.find(key), std::string::npos) << key << " missing from: " << what;
     }
   }

@@ -173,3 +173,27 @@ TEST(GroundEffectTable, ValidationNamesTheBadEntry) {
 }
 
 }  // namespace
+
+// A table whose values are replaced in place (a curve learned in flight) is, bit for bit, the
+// table built from the new values: value, slope and knot slopes at every height, above and
+// below the knots included.
+TEST(HeightTable, NewValuesInPlaceGiveTheTableBuiltFromThem) {
+  const std::vector<double> knots = {0.08, 0.1, 0.13, 0.17, 0.22, 0.3, 0.45};
+  const std::vector<double> first = {0.4, 0.3, 0.2, 0.12, 0.07, 0.03, 0.01};
+  const std::vector<double> second = {0.2, 0.25, 0.1, 0.1, 0.11, 0.0, 0.02};  // extrema, a plateau
+  HeightTable changed(knots, first);
+  changed.setValues(second.data());
+  const HeightTable built(knots, second);
+  EXPECT_EQ(changed.values(), built.values());
+  EXPECT_EQ(changed.knotSlopes(), built.knotSlopes());
+  for (double h : grid(0.05, 0.8, 0.0037)) {
+    EXPECT_EQ(changed.value(h), built.value(h)) << h;
+    EXPECT_EQ(changed.slope(h), built.slope(h)) << h;
+  }
+  // And through the model, as the controller uses it.
+  VehicleParams p = tabulatedPaperParams(knots);
+  GroundEffectModel model(p);
+  ASSERT_TRUE(model.thrustIsTable());
+  model.setThrustTableValues(second.data());
+  for (double h : grid(0.08, 0.8, 0.011)) EXPECT_EQ(model.thrustRatio(h), built.value(std::max(h, p.min_rotor_plane_height_m))) << h;
+}

@@ -35,11 +35,13 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
 #include "geaware/control/controller_params.hpp"
+#include "geaware/control/ground_effect_learner.hpp"
 #include "geaware/control/residual_force.hpp"
 #include "geaware/flatness/flat_map.hpp"
 #include "geaware/model/low_pass.hpp"
@@ -132,10 +134,15 @@ class Controller {
   /// One control step at params().rate_hz. No allocation, no exceptions.
   [[nodiscard]] ControllerOutput update(const ControllerInput& in) noexcept;
 
-  /// Clears filters and integrators (e.g. before a new flight).
+  /// Clears filters and integrators (e.g. before a new flight). A curve learned in flight is
+  /// kept.
   void reset() noexcept;
 
   [[nodiscard]] const ControllerParams& params() const noexcept { return params_; }
+  /// The in-flight ground-effect learner (params().learn_ground_effect on), or null.
+  [[nodiscard]] const GroundEffectLearner* learner() const noexcept {
+    return learner_ ? &*learner_ : nullptr;
+  }
 
  private:
   /// Throttles that hold a level hover at the last valid height: the safe output for a tick
@@ -146,6 +153,9 @@ class Controller {
   [[nodiscard]] ControllerOutput step(const ControllerInput& in) noexcept;
   /// The motor monitor after a finite step: flags a failed motor, terminates when it tipped.
   void monitorMotors(const ControllerInput& in, ControllerOutput& out) noexcept;
+  /// One sample for the in-flight F_G learner after a finite step; the models take the new
+  /// curve when it changes.
+  void learnGroundEffect(const ControllerInput& in) noexcept;
   /// The per-rotor speed loop's throttle corrections (zero when off).
   [[nodiscard]] Eigen::Vector4d rotorSpeedCorrection(const ControllerInput& in) noexcept;
 
@@ -211,6 +221,9 @@ class Controller {
   double min_rotor_plane_height_m_;
   /// Half the diagonal rotor distance: how far a landing foot can be from the centre [m].
   double arm_m_;
+  /// F_G learned in flight (with learning on; ground_effect_ and reference_map_ then hold F_G
+  /// as a table on the learner's knots).
+  std::optional<GroundEffectLearner> learner_;
 
   /// Everything update() changes from tick to tick (fixed size, no allocation). A tick whose
   /// commands come out non-finite (inputs finite but so large that the arithmetic overflows)
@@ -226,6 +239,7 @@ class Controller {
     model::LowPass2<3> tau_hat_filter_;
     model::LowPass2<3> accel_filter_;
     model::LowPass2<3> thrust_vector_filter_;
+    double thrust_acc_f_mps2_ = 0.0;  // |filtered thrust vector|, T_f/m [m/s²]
     Eigen::Vector3d last_w_f_ = Eigen::Vector3d::Zero();
     bool have_last_w_ = false;
     double thrust_pi_integral_ = 0.0;

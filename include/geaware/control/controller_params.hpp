@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include "geaware/control/ground_effect_learner.hpp"
 #include "geaware/model/field_error.hpp"
 
 namespace geaware::control {
@@ -34,6 +35,13 @@ enum class TorqueCompensation {
 [[nodiscard]] bool parse(const std::string& text, AccelerationCompensation& out) noexcept;
 /// Parses "none", "model", "indi", "model_indi"; false when unknown.
 [[nodiscard]] bool parse(const std::string& text, TorqueCompensation& out) noexcept;
+
+/// F_G learned in flight (control/ground_effect_learner.hpp, issue 13 item 3), starting from…
+enum class GroundEffectLearning {
+  kOff,          ///< the vehicle file's F_G, fixed (the paper)
+  kFromVehicle,  ///< the vehicle file's F_G at the knots (configuration suffix "+learn")
+  kFromNothing,  ///< no ground effect at all: a user without a force platform ("+learn0")
+};
 
 /// The height at which the ground-effect models (F_G, D(h), J'(h)) are evaluated.
 enum class GroundEffectHeight {
@@ -102,6 +110,12 @@ struct ControllerParams {
   /// lag (the motor's time constant plus the ESC/link dead time), so that only a gain error —
   /// not the motors' ordinary lag behind a changing command — is integrated [s].
   double rotor_speed_lag_s = 0.04;
+  /// F_G learned in flight from the disturbance observer's estimate (the controller's input
+  /// external_accel_W); acceleration `model` only. Off in every configuration unless the
+  /// configuration name says "+learn" or "+learn0".
+  GroundEffectLearning learn_ground_effect = GroundEffectLearning::kOff;
+  /// The learner's knots, forgetting, gates and bounds (with learning on).
+  GroundEffectLearnerParams learner;
 
   /// Whether any of geaware's additions is on.
   [[nodiscard]] bool hasAdditions() const noexcept;
@@ -119,7 +133,7 @@ struct ControllerParams {
 
 /// The name of a configuration: "recommended" when `p` has recommendedControllerParams()'s
 /// switches and additions; otherwise "ACC:TORQUE", followed by "+dob", "+integral", "+guard"
-/// for each addition that is on.
+/// for each addition that is on; then "+learn" or "+learn0" when F_G is learned in flight.
 [[nodiscard]] std::string configurationName(const ControllerParams& p);
 
 /// Parses "recommended" or "ACC:TORQUE" into `p` (the switches and additions only; gains and

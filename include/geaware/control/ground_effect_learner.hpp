@@ -11,10 +11,19 @@
 // and forgets (factor λ per sample) only when a sample falls in it: information about heights
 // the vehicle no longer visits is kept, so with poor excitation nothing drifts (directional
 // forgetting, Kulhavý 1987). The estimate solves the tridiagonal normal equations
-//     (Λ₀ + Σ_j A_j) θ = Λ₀·θ₀ + Σ_j b_j
+//     (Λ₀ + Σ_j A_j) θ = Λ₀·θ₀ + Σ_j b_j   (bordered by the offset's row and column)
 // with the prior θ₀ (the vehicle file's curve at the knots, or 0: no model at all) of
 // information Λ₀ = 1/σ₀² per knot, then bounds θ to [min, max]. Knots no sample reached keep
 // their prior. No allocation after construction; every update is O(knots).
+//
+// The flight estimate holds everything the rotors' nominal thrust does not explain: a mass or
+// thrust-coefficient error shows as an offset b at every height. b is estimated with θ: a sample
+// among the knots is y = (1−t)·θ_j + t·θ_j+1 + b, a sample at or above far_height_m (out of
+// ground effect) is y = θ_N·(h_N/h)² + b, the curve's inverse-square tail beyond the last knot
+// (as model::HeightTable continues a table) plus the offset. The far samples are what separates
+// b from the curve (with a weak prior, 0), so the curve learned is the ground's
+// share alone whenever the vehicle has been out of ground effect. Before the first far sample
+// b is 0: nothing tells it from the curve.
 
 #include <array>
 #include <cstddef>
@@ -31,7 +40,9 @@ struct GroundEffectLearnerParams {
   std::vector<double> knots_m = {0.08, 0.10, 0.12, 0.14, 0.17, 0.20, 0.24, 0.28, 0.33, 0.40, 0.50};
   double forgetting = 0.999;       ///< λ per sample in an interval, (0, 1] [-]
   double sample_sigma = 0.05;      ///< σ of one F̃_G sample [-]
-  double prior_sigma = 0.02;       ///< σ₀ of the prior at each knot [-]
+  double prior_sigma = 0.02;       ///< σ₀ of a prior from a vehicle file, at each knot [-]
+  /// σ₀ when there is no model to start from (prior 0): a regulariser only [-].
+  double no_model_prior_sigma = 1.0;
   double min_ratio = 0.0;          ///< lower bound on F_G [-]
   double max_ratio = 1.5;          ///< upper bound on F_G [-]
   double max_abs_sample = 2.0;     ///< |F̃_G| above this is an outlier, not used [-]
@@ -40,13 +51,19 @@ struct GroundEffectLearnerParams {
   double max_climb_mps = 0.5;      ///< nor at a larger vertical speed [m/s]
   /// A knot counts as learned once its data information reaches this many samples' worth [-].
   double learned_samples = 200.0;
+  /// Samples at or above this height estimate the offset (must be above the last knot) [m].
+  double far_height_m = 0.8;
+  /// Memory of the far samples (forgetting 1 − 1/offset_samples per far sample) [-].
+  double offset_samples = 400.0;
+  /// σ of the offset's prior (0) once far samples have come; before any, the offset is 0 [-].
+  double offset_sigma = 0.1;
 
   [[nodiscard]] std::vector<model::FieldError> validate() const;
 };
 
 /// Why a sample was or was not used.
 enum class LearnerSample : std::uint8_t {
-  kUsed, kNonFinite, kOutsideKnots, kOutlier, kTilted, kFast, kClimbing
+  kUsed, kOffset, kNonFinite, kOutsideKnots, kOutlier, kTilted, kFast, kClimbing
 };
 
 class GroundEffectLearner {
@@ -72,15 +89,20 @@ class GroundEffectLearner {
   [[nodiscard]] bool learned(std::size_t k) const noexcept { return dataSamples(k) >= learned_samples_; }
   /// The learned curve at h (linear between knots, the first / last value held outside) [-].
   [[nodiscard]] double ratio(double h_m) const noexcept;
-  /// Samples used so far.
+  /// Samples used for the curve so far.
   [[nodiscard]] std::uint64_t used() const noexcept { return used_; }
-  /// Increments whenever the estimate changes (the controller re-reads the values then).
-  [[nodiscard]] std::uint64_t revision() const noexcept { return used_; }
+  /// The offset subtracted from samples among the knots (0 until a far sample came) [-].
+  [[nodiscard]] double offset() const noexcept { return offset_; }
+  [[nodiscard]] std::uint64_t offsetSamples() const noexcept { return offset_n_; }
 
  private:
   struct Interval {
-    double a00 = 0.0, a01 = 0.0, a11 = 0.0;  // information [1/σ²]
-    double b0 = 0.0, b1 = 0.0;
+    double a00 = 0.0, a01 = 0.0, a11 = 0.0;  // information of the two knots [1/σ²]
+    double c0 = 0.0, c1 = 0.0, cc = 0.0;     // with the offset, and the offset's own
+    double b0 = 0.0, b1 = 0.0, cy = 0.0;     // right-hand sides
+  };
+  struct Far {
+    double rr = 0.0, rb = 0.0, bb = 0.0, ry = 0.0, by = 0.0;
   };
   void solve() noexcept;
 
@@ -90,7 +112,10 @@ class GroundEffectLearner {
   std::array<double, kMaxKnots> theta_{};
   std::array<Interval, kMaxKnots> stats_{};  // interval j between knots j and j+1
   double lambda_, w_, prior_info_, min_, max_, max_abs_, max_tilt_, max_speed_, max_climb_;
-  double learned_samples_;
+  double learned_samples_, far_height_m_, far_lambda_, offset_prior_info_;
+  Far far_;
+  double offset_ = 0.0;
+  std::uint64_t offset_n_ = 0;
   std::uint64_t used_ = 0;
 };
 

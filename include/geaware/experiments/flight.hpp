@@ -185,6 +185,18 @@ struct EstimationSummary {
   std::array<std::uint64_t, 3> eskf_flag_ticks{};
 };
 
+/// The F_G curve a controller learned in flight (configurations "+learn", "+learn0"; issue 13).
+struct LearnedGroundEffect {
+  std::vector<double> heights_m;  ///< the learner's knots [m]
+  std::vector<double> f_g;        ///< F_G at each knot at the end of the flight [-]
+  std::vector<bool> learned;      ///< whether enough samples reached the knot
+  double offset = 0.0;            ///< the offset found far from the ground [-]
+  std::uint64_t samples = 0;      ///< samples used for the curve
+
+  /// The curve at h: linear between the knots, the end values held outside [-].
+  [[nodiscard]] double ratio(double h_m) const noexcept;
+};
+
 struct FlightResult {
   /// Reference vs TRUE geometric centre, sampled at the control rate over [0, duration] of the
   /// trajectory (up to the crash, if any).
@@ -202,6 +214,8 @@ struct FlightResult {
   /// whole flight, start hover included); empty when the controller has no guard [s].
   std::optional<double> guard_active_s;
   EstimationSummary estimation;
+  /// What the controller learned of F_G in flight; empty when it does not learn.
+  std::optional<LearnedGroundEffect> learned_ground_effect;
   double simulated_s = 0.0;       ///< plant time at the end [s]
   double wall_s = 0.0;            ///< wall time of the loop (not deterministic) [s]
   double real_time_factor = 0.0;  ///< simulated_s / wall_s [-]

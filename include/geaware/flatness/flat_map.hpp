@@ -68,6 +68,10 @@ class FlatMap {
   /// Flat outputs and rotor-plane height [m] → reference state. No allocation, no exceptions.
   [[nodiscard]] FlatState evaluate(const traj::FlatOutput& ref, double height_m) const noexcept;
 
+  /// The model's F_G table values replaced (same knots; see model::GroundEffectModel), for a
+  /// curve learned in flight. No allocation.
+  void setThrustTableValues(const double* values) noexcept { ground_effect_.setThrustTableValues(values); }
+
   [[nodiscard]] const GroundEffectTerms& terms() const noexcept { return terms_; }
 
  private:

@@ -61,6 +61,13 @@ class GroundEffectModel {
   /// Diagonal of J'(h) [kg·m²].
   [[nodiscard]] Eigen::Vector3d levelingInertiaDiagonal(double h_m) const noexcept;
 
+  /// Whether F_G is a table (vehicle file `ground_effect.additional_thrust.table`), and its knots.
+  [[nodiscard]] bool thrustIsTable() const noexcept { return !thrust_table_.empty(); }
+  [[nodiscard]] const HeightTable& thrustTable() const noexcept { return thrust_table_; }
+  /// New F_G values at the table's knots (thrustTable().size() of them, finite). Only for a
+  /// table; no allocation (the curve learned in flight, control/ground_effect_learner.hpp).
+  void setThrustTableValues(const double* values) noexcept { thrust_table_.setValues(values); }
+
  private:
   double mass_kg_;
   Eigen::Vector3d inertia_kgm2_;

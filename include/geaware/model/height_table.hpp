@@ -14,7 +14,8 @@
 //    the tail's, −2·v_N/h_N, limited as the interior slopes are, so the curve is C¹ there
 //    whenever the data allow.
 //
-// Construction allocates; value() and slope() do not, and cost one binary search.
+// Construction allocates; value(), slope() and setValues() do not; the first two cost one
+// binary search.
 
 #include <cstddef>
 #include <vector>
@@ -42,7 +43,12 @@ class HeightTable {
   /// Its derivative d/dh [value unit per m].
   [[nodiscard]] double slope(double h_m) const noexcept;
 
+  /// New values at the same knots (size() of them, finite): the curve a table built from them
+  /// would be, bit for bit. No allocation (a curve learned in flight, control/ground_effect_learner).
+  void setValues(const double* values) noexcept;
+
  private:
+  void computeSlopes() noexcept;
   /// Index k of the interval [h_k, h_k+1] holding h (h_0 ≤ h < h_N).
   [[nodiscard]] std::size_t interval(double h_m) const noexcept;
 
