@@ -27,6 +27,7 @@
 #include "geaware/io/output_file.hpp"
 #include "geaware/io/truth_file.hpp"
 #include "geaware/io/vehicle_file.hpp"
+#include "geaware/io/vehicle_writer.hpp"
 #include "progress.hpp"
 
 namespace geaware::cli {
@@ -34,6 +35,7 @@ namespace {
 
 struct FlyOptions {
   std::string scenario, vehicle, truth, trajectory, controller, out, json, report, neural_weights;
+  std::string learned_vehicle;  ///< --learned-vehicle: the vehicle file with the F_G learned in flight
   std::string controller_params;  ///< --controller-params FILE (empty: the compiled defaults)
   double height_m = std::nan("");
   double speed_mps = std::nan("");
@@ -63,9 +65,10 @@ const CLI::Validator kControllerSpec(
       if (parseController(text, p)) return {};
       return "--controller '" + text +
              "': expected 'recommended' or ACC:TORQUE with ACC one of none, indi, neural, model "
-             "and TORQUE one of none, model, indi, model_indi (e.g. model:model_indi)";
+             "and TORQUE one of none, model, indi, model_indi (e.g. model:model_indi), optionally "
+             "followed by +learn or +learn0 (F_G learned in flight)";
     },
-    "recommended|ACC:TORQUE");
+    "recommended|ACC:TORQUE[+learn|+learn0]");
 
 experiments::TrajectoryOptions flightPlan(const FlyOptions& o) {
   experiments::TrajectoryOptions p;
@@ -138,8 +141,27 @@ void checkFiles(const FlyOptions& o) {
   files.input("--controller-params", o.controller_params);
   files.output("--out", o.out, false);
   files.output("--json", o.json);
+  files.output("--learned-vehicle", o.learned_vehicle);
   files.directory("--report", o.report);
   files.check();
+}
+
+/// --learned-vehicle: the flight's vehicle file (or the built-in one) with F_G replaced by the
+/// table the controller learned, every other value and comment kept (io::writeVehicleFile).
+void writeLearnedVehicle(const FlyOptions& o, const experiments::FlightResult& r, const io::RunInfo& run) {
+  if (o.learned_vehicle.empty() || !r.learned_ground_effect) return;
+  const experiments::LearnedGroundEffect& g = *r.learned_ground_effect;
+  io::VehicleUpdate update;
+  update.setTable("ground_effect.additional_thrust", g.heights_m, g.f_g);
+  update.provenance = fmt::format("a flight learning F_G (geaware fly, {} samples, seed {})",
+                                  g.samples, run.seeds.empty() ? 0 : run.seeds.front());
+  if (o.vehicle.empty()) {
+    (void)io::writeVehicleFile(io::builtinVehicleYaml(), "built-in vehicle", o.learned_vehicle, update);
+  } else {
+    (void)io::writeVehicleFile(o.vehicle, o.learned_vehicle, update);
+  }
+  std::cerr << "geaware: wrote the learned F_G (" << g.heights_m.size() << " knots) into "
+            << o.learned_vehicle << "\n";
 }
 
 /// Refuses, before it starts, a flight whose simulated duration exceeds --max-sim-s.
@@ -155,6 +177,10 @@ void checkDuration(const experiments::FlightScenario& s) {
 
 int runFly(const FlyOptions& o) {
   const experiments::FlightScenario s = scenarioOf(o);
+  if (!o.learned_vehicle.empty() && s.controller.learn_ground_effect == control::GroundEffectLearning::kOff) {
+    throw std::runtime_error("--learned-vehicle needs a controller that learns F_G in flight (--controller "
+                             "…+learn or …+learn0)");
+  }
   checkFiles(o);
   checkDuration(s);
   const io::RunInfo run =
@@ -189,6 +215,7 @@ int runFly(const FlyOptions& o) {
   std::fflush(human);
   if (log) std::cerr << fmt::format("geaware: wrote {} rows to {}\n", log->rows(), o.out);
   if (!o.json.empty()) writeJsonOutput(o.json, experiments::flightJson(s, r), run);
+  writeLearnedVehicle(o, r, run);
   if (series) {
     const auto html =
         experiments::writeFlightReport(o.report, series->series(), r, title(o, s), run, o.png);
@@ -248,6 +275,9 @@ void addOutputOptions(CLI::App* cmd, FlyOptions& o) {
   cmd->add_option("--out", o.out,
                   "CSV log, one row per control tick (readable by `geaware identify flight`)");
   cmd->add_option("--json", o.json, "write the summary as one JSON object ('-': stdout)");
+  cmd->add_option("--learned-vehicle", o.learned_vehicle,
+                  "with --controller …+learn or …+learn0: write the vehicle file (--vehicle's, or the "
+                  "built-in one) with F_G as the table learned in flight");
   cmd->add_option("--ablate", o.ablate,
                   "switch off a physical effect of the truth, for diagnosis only: "
                   "motor_reaction (J_R·ṅ), gyroscopic")
@@ -293,6 +323,10 @@ Runner addFlyCommand(CLI::App& app) {
       throw CLI::ValidationError("--speed", "--trajectory lemniscate needs --speed V (peak speed) [m/s]");
     }
     if (o->png && o->report.empty()) throw CLI::ValidationError("--png", "--png needs --report DIR");
+    if (!o->learned_vehicle.empty() && !o->scenario.empty()) {
+      throw CLI::ValidationError("--learned-vehicle",
+                                 "--learned-vehicle is for flights set up by options (--vehicle), not --scenario");
+    }
   });
   return [o]() { return runFly(*o); };
 }

@@ -200,3 +200,51 @@ TEST(JsonOutput, IdentifyFlightOnAFlyLogPrintsOnlyJson) {
 }
 
 }  // namespace
+
+namespace {
+
+std::string readText(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+// `fly --learned-vehicle`: the vehicle file with F_G as the table the controller learned (issue
+// 13 item 3). It loads, `geaware model` reads back exactly the learned knot values, the same
+// flight writes the same bytes, and without a learning controller the option is refused.
+TEST(JsonOutput, FlyWritesTheLearnedGroundEffectAsAVehicleFile) {
+  const fs::path a = scratch() / "learned_a.yaml";
+  const fs::path b = scratch() / "learned_b.yaml";
+  const std::string flight =
+      "fly --trajectory hover-descent --from-height 1.2 --height 0.1 --speed 0.1 "
+      "--controller recommended+learn0 --seed 3 --quiet --json - --learned-vehicle ";
+  const Json doc = parse(geaware(flight + "'" + a.string() + "'"), "fly --learned-vehicle");
+  EXPECT_EQ(doc["controller"], "recommended+learn0");
+  ASSERT_EQ(geaware(flight + "'" + b.string() + "'").exit_code, 0);
+  const std::string text = readText(a);
+  EXPECT_EQ(text, readText(b)) << "the same flight learns the same curve";
+  const std::smatch knots = [&] {
+    std::smatch m;
+    std::regex_search(text, m, std::regex(R"(heights_m: \[([^\]]*)\]\s*\n\s*F_G: \[([^\]]*)\])"));
+    return m;
+  }();
+  ASSERT_EQ(knots.size(), 3u) << text;
+  EXPECT_EQ(knots[1].str(), "0.08, 0.1, 0.12, 0.14, 0.17, 0.2, 0.24, 0.28, 0.33, 0.4, 0.5");
+  std::vector<double> f_g;
+  std::stringstream values(knots[2].str());
+  for (std::string v; std::getline(values, v, ',');) f_g.push_back(std::stod(v));
+  ASSERT_EQ(f_g.size(), 11u);
+  const Json model = parse(geaware("model --vehicle '" + a.string() + "' --heights 0.1:0.2:0.1 --json -"), "model");
+  EXPECT_DOUBLE_EQ(model["rows"][0]["F_G"].get<double>(), f_g[1]);
+  EXPECT_DOUBLE_EQ(model["rows"][1]["F_G"].get<double>(), f_g[5]);
+  EXPECT_GT(f_g[1], 0.05) << "something was learned near the ground";
+  const fs::path c = scratch() / "learned_c.yaml";
+  EXPECT_NE(geaware("fly --trajectory hover-descent --height 0.2 --speed 0.5 --controller recommended "
+                    "--quiet --learned-vehicle '" + c.string() + "'")
+                .exit_code,
+            0);
+  EXPECT_FALSE(fs::exists(c));
+}
