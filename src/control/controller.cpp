@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "controller_internal.hpp"
 #include "geaware/control/allocation.hpp"
 #include "geaware/model/imu_limits.hpp"
 #include "geaware/model/rotation.hpp"
@@ -61,33 +62,12 @@ Eigen::Matrix3d attitudeFrom(const Eigen::Vector3d& z_des, double yaw) {
   return R;
 }
 
-bool learning(const ControllerParams& p) { return p.learn_ground_effect != GroundEffectLearning::kOff; }
-
-/// The learner's starting curve at its knots: the vehicle file's F_G, or none at all.
-std::vector<double> learnerPrior(const model::VehicleModel& vehicle, const ControllerParams& p) {
-  std::vector<double> prior;
-  for (const double h : p.learner.knots_m) {
-    prior.push_back(p.learn_ground_effect == GroundEffectLearning::kFromVehicle
-                        ? vehicle.groundEffect().thrustRatio(h)
-                        : 0.0);
-  }
-  return prior;
-}
-
-/// The vehicle with F_G as a table on the learner's knots, at the prior (learning on only).
-model::VehicleModel learningVehicle(const model::VehicleModel& vehicle, const ControllerParams& p) {
-  model::VehicleParams v = vehicle.params();
-  v.additional_thrust.table.heights_m = p.learner.knots_m;
-  v.additional_thrust.table.values = learnerPrior(vehicle, p);
-  return model::VehicleModel(std::move(v));
-}
-
 model::GroundEffectModel groundEffectFor(const model::VehicleModel& vehicle, const ControllerParams& p) {
-  return learning(p) ? learningVehicle(vehicle, p).groundEffect() : vehicle.groundEffect();
+  return detail::learning(p) ? detail::learningVehicle(vehicle, p).groundEffect() : vehicle.groundEffect();
 }
 
 flatness::FlatMap referenceMapFor(const model::VehicleModel& vehicle, const ControllerParams& p) {
-  return learning(p) ? flatness::FlatMap(learningVehicle(vehicle, p), referenceTerms(p))
+  return detail::learning(p) ? flatness::FlatMap(detail::learningVehicle(vehicle, p), referenceTerms(p))
                      : flatness::FlatMap(vehicle, referenceTerms(p));
 }
 
@@ -114,10 +94,10 @@ Controller::Controller(const model::VehicleModel& vehicle, ControllerParams para
   if (params_.acceleration == AccelerationCompensation::kNeural && !residual_) {
     throw std::invalid_argument("acceleration compensation 'neural' needs a residual-force model");
   }
-  if (learning(params_)) {
+  if (detail::learning(params_)) {
     GroundEffectLearnerParams lp = params_.learner;
     if (params_.learn_ground_effect == GroundEffectLearning::kFromNothing) lp.prior_sigma = lp.no_model_prior_sigma;
-    learner_.emplace(lp, learnerPrior(vehicle, params_));
+    learner_.emplace(lp, detail::learnerPrior(vehicle, params_));
   }
 }
 
@@ -424,21 +404,6 @@ ControllerOutput Controller::update(const ControllerInput& in) noexcept {
   return out;
 }
 
-void Controller::learnGroundEffect(const ControllerInput& in) noexcept {
-  // The paper's flight estimate F̃_G = m·z_Wᵀ·ã_ext/T_f, with the thrust filtered as the
-  // observer filters it, at the height the ranger measured this tick.
-  if (!(in.external_accel_valid && in.height_valid && in.external_accel_W.allFinite())) return;
-  const double thrust_acc = mem_.thrust_acc_f_mps2_;
-  if (!(thrust_acc > 0.5 * kGravity)) return;  // not carried by the rotors
-  const double cos_tilt = in.estimate.q_WB.normalized().toRotationMatrix()(2, 2);
-  const double tilt = std::acos(std::clamp(cos_tilt, -1.0, 1.0));
-  const double f_g = in.external_accel_W.z() / thrust_acc;
-  if (learner_->update(in.height_m, f_g, tilt, in.estimate.v_W.head<2>().norm(), in.estimate.v_W.z()) ==
-      LearnerSample::kUsed) {
-    ground_effect_.setThrustTableValues(learner_->values());
-    reference_map_.setThrustTableValues(learner_->values());
-  }
-}
 
 
 ControllerOutput Controller::step(const ControllerInput& in) noexcept {

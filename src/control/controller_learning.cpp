@@ -1,0 +1,52 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// F_G learned in flight (docs/controller.md, "F_G learned in flight"): the learner's start from
+// the vehicle file or from nothing, and one sample per tick (control/ground_effect_learner.hpp).
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "controller_internal.hpp"
+#include "geaware/control/controller.hpp"
+#include "geaware/model/units.hpp"
+
+namespace geaware::control {
+namespace detail {
+
+/// The learner's starting curve at its knots: the vehicle file's F_G, or none at all.
+std::vector<double> learnerPrior(const model::VehicleModel& vehicle, const ControllerParams& p) {
+  std::vector<double> prior;
+  for (const double h : p.learner.knots_m) {
+    prior.push_back(p.learn_ground_effect == GroundEffectLearning::kFromVehicle
+                        ? vehicle.groundEffect().thrustRatio(h)
+                        : 0.0);
+  }
+  return prior;
+}
+
+/// The vehicle with F_G as a table on the learner's knots, at the prior (learning on only).
+model::VehicleModel learningVehicle(const model::VehicleModel& vehicle, const ControllerParams& p) {
+  model::VehicleParams v = vehicle.params();
+  v.additional_thrust.table.heights_m = p.learner.knots_m;
+  v.additional_thrust.table.values = learnerPrior(vehicle, p);
+  return model::VehicleModel(std::move(v));
+}
+
+}  // namespace detail
+
+void Controller::learnGroundEffect(const ControllerInput& in) noexcept {
+  // The paper's flight estimate F̃_G = m·z_Wᵀ·ã_ext/T_f, with the thrust filtered as the
+  // observer filters it, at the height the ranger measured this tick.
+  if (!(in.external_accel_valid && in.height_valid && in.external_accel_W.allFinite())) return;
+  const double thrust_acc = mem_.thrust_acc_f_mps2_;
+  if (!(thrust_acc > 0.5 * model::kGravity)) return;  // not carried by the rotors
+  const double cos_tilt = in.estimate.q_WB.normalized().toRotationMatrix()(2, 2);
+  const double tilt = std::acos(std::clamp(cos_tilt, -1.0, 1.0));
+  const double f_g = in.external_accel_W.z() / thrust_acc;
+  if (learner_->update(in.height_m, f_g, tilt, in.estimate.v_W.head<2>().norm(), in.estimate.v_W.z()) ==
+      LearnerSample::kUsed) {
+    ground_effect_.setThrustTableValues(learner_->values());
+    reference_map_.setThrustTableValues(learner_->values());
+  }
+}
+
+}  // namespace geaware::control
