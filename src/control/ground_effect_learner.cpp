@@ -82,12 +82,16 @@ GroundEffectLearner::GroundEffectLearner(const GroundEffectLearnerParams& params
       learned_samples_(params.learned_samples),
       far_height_m_(params.far_height_m),
       far_lambda_(1.0 - 1.0 / params.offset_samples),
+      monotone_(params.monotone),
       offset_prior_info_(1.0 / (params.offset_sigma * params.offset_sigma)) {
   for (std::size_t k = 0; k < n_; ++k) {
     h_[k] = params.knots_m[k];
     prior_[k] = prior_values[k];
     theta_[k] = std::clamp(prior_values[k], min_, max_);
   }
+  std::array<double, kMaxKnots> info{};
+  info.fill(prior_info_);
+  if (monotone_) makeNonIncreasing(info);
 }
 
 LearnerSample GroundEffectLearner::update(double h_m, double f_g, double tilt_rad, double speed_mps,
@@ -186,20 +190,50 @@ void GroundEffectLearner::solve() noexcept {
   rhs[n_ - 1] += far_.ry;
   d_b += far_.bb;
   s_b += far_.by;
+  std::array<double, kMaxKnots> info{};  // each knot's information, for the monotone fit
+  for (std::size_t k = 0; k < n_; ++k) info[k] = diag[k];
   thomas(n_, diag.data(), upper.data(), rhs.data(), x.data());
   if (offset_n_ == 0) {  // nothing separates an offset from the curve yet: b = 0
     offset_ = 0.0;
     for (std::size_t k = 0; k < n_; ++k) theta_[k] = std::clamp(x[k], min_, max_);
-    return;
+  } else {
+    thomas(n_, diag.data(), upper.data(), u.data(), z.data());
+    double ux = 0.0, uz = 0.0;
+    for (std::size_t k = 0; k < n_; ++k) {
+      ux += u[k] * x[k];
+      uz += u[k] * z[k];
+    }
+    offset_ = (s_b - ux) / (d_b - uz);
+    for (std::size_t k = 0; k < n_; ++k) theta_[k] = std::clamp(x[k] - z[k] * offset_, min_, max_);
   }
-  thomas(n_, diag.data(), upper.data(), u.data(), z.data());
-  double ux = 0.0, uz = 0.0;
+  if (monotone_) makeNonIncreasing(info);
+}
+
+// Weighted isotonic regression by pooling adjacent violators (Ayer et al. 1955): the closest
+// non-increasing sequence to θ in the knots' information. A knot the vehicle never reached
+// (prior information only) below one it learned is pooled with it, so an unexplored height
+// near the ground gets at least the extra thrust learned above it, not the prior's none.
+void GroundEffectLearner::makeNonIncreasing(const std::array<double, kMaxKnots>& weight) noexcept {
+  std::array<double, kMaxKnots> value{}, total{};
+  std::array<std::size_t, kMaxKnots> count{};
+  std::size_t blocks = 0;
   for (std::size_t k = 0; k < n_; ++k) {
-    ux += u[k] * x[k];
-    uz += u[k] * z[k];
+    value[blocks] = theta_[k];
+    total[blocks] = weight[k];
+    count[blocks] = 1;
+    ++blocks;
+    while (blocks > 1 && value[blocks - 2] < value[blocks - 1]) {
+      const double w = total[blocks - 2] + total[blocks - 1];
+      value[blocks - 2] = (total[blocks - 2] * value[blocks - 2] + total[blocks - 1] * value[blocks - 1]) / w;
+      total[blocks - 2] = w;
+      count[blocks - 2] += count[blocks - 1];
+      --blocks;
+    }
   }
-  offset_ = (s_b - ux) / (d_b - uz);
-  for (std::size_t k = 0; k < n_; ++k) theta_[k] = std::clamp(x[k] - z[k] * offset_, min_, max_);
+  std::size_t k = 0;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    for (std::size_t i = 0; i < count[b]; ++i) theta_[k++] = value[b];
+  }
 }
 
 double GroundEffectLearner::dataSamples(std::size_t k) const noexcept {

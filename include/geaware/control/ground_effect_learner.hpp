@@ -13,8 +13,9 @@
 // forgetting, Kulhavý 1987). The estimate solves the tridiagonal normal equations
 //     (Λ₀ + Σ_j A_j) θ = Λ₀·θ₀ + Σ_j b_j   (bordered by the offset's row and column)
 // with the prior θ₀ (the vehicle file's curve at the knots, or 0: no model at all) of
-// information Λ₀ = 1/σ₀² per knot, then bounds θ to [min, max]. Knots no sample reached keep
-// their prior. No allocation after construction; every update is O(knots).
+// information Λ₀ = 1/σ₀² per knot, then bounds θ to [min, max] and makes it non-increasing in h
+// (weighted isotonic regression). Knots no sample reached keep their prior, raised where needed
+// to the value learned above them. No allocation after construction; every update is O(knots).
 //
 // The flight estimate holds everything the rotors' nominal thrust does not explain: a mass or
 // thrust-coefficient error shows as an offset b at every height. b is estimated with θ: a sample
@@ -57,6 +58,10 @@ struct GroundEffectLearnerParams {
   double offset_samples = 400.0;
   /// σ of the offset's prior (0) once far samples have come; before any, the offset is 0 [-].
   double offset_sigma = 0.1;
+  /// F_G never decreases as the ground comes closer: the estimate is the closest non-increasing
+  /// curve (weighted isotonic regression). The paper's curve and every law of
+  /// docs/sim-aerodynamics.md are monotone; off only to see the raw fit.
+  bool monotone = true;
 
   [[nodiscard]] std::vector<model::FieldError> validate() const;
 };
@@ -105,6 +110,7 @@ class GroundEffectLearner {
     double rr = 0.0, rb = 0.0, bb = 0.0, ry = 0.0, by = 0.0;
   };
   void solve() noexcept;
+  void makeNonIncreasing(const std::array<double, kMaxKnots>& weight) noexcept;
 
   std::size_t n_ = 0;
   std::array<double, kMaxKnots> h_{};
@@ -112,7 +118,9 @@ class GroundEffectLearner {
   std::array<double, kMaxKnots> theta_{};
   std::array<Interval, kMaxKnots> stats_{};  // interval j between knots j and j+1
   double lambda_, w_, prior_info_, min_, max_, max_abs_, max_tilt_, max_speed_, max_climb_;
-  double learned_samples_, far_height_m_, far_lambda_, offset_prior_info_;
+  double learned_samples_, far_height_m_, far_lambda_;
+  bool monotone_;
+  double offset_prior_info_;
   Far far_;
   double offset_ = 0.0;
   std::uint64_t offset_n_ = 0;
