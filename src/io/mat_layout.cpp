@@ -257,6 +257,13 @@ class V5Layout {
         pos += 8;
         continue;
       }
+      // libmatio reads bytes/4 dimensions, then the name tag right after them (4 more bytes
+      // skipped for an odd count): dimensions of 2 bytes made it read a name tag of 2.9 GB from
+      // bytes this walk skipped as padding (fuzz_mat). MAT-File Format writes at least two.
+      if (element == 1 && !too_long && (bytes < 8 || bytes % 4 != 0)) {
+        fail(at, "a matrix whose dimensions element has " + std::to_string(bytes) +
+                     " bytes, expected two or more int32 (a multiple of 4 bytes, at least 8): a damaged .mat file");
+      }
       if (element == 1 && !sparse && !too_long) {  // the dimensions (type 5), read before libmatio allocates by them
         if (bytes > 4 * 32) fail(at, "a variable of more than 32 dimensions");
         unsigned char dims[4 * 32];

@@ -262,6 +262,11 @@ TEST(MatReader, TheHeaderIsReadAsLibmatioReadsIt) {
   const auto i = patched("dims6.mat", 152, std::string("\x06\x00\x00\x00", 4));
   EXPECT_EQ(message(i), i.string() + ": byte 128: a matrix whose second element (its dimensions) has type 6, "
                                      "expected type 5 (miINT32) in a full tag: a damaged .mat file");
+  // Dimensions of 2 bytes: libmatio reads no dimension and takes the padding's bytes for the
+  // name tag (fuzz_mat: a 2.9 GB name). Refused, as any count not a multiple of 4 or under 8.
+  const auto two = patched("dims2bytes.mat", 156, std::string("\x02\x00\x00\x00", 4));
+  EXPECT_EQ(message(two), two.string() + ": byte 128: a matrix whose dimensions element has 2 bytes, expected two "
+                                         "or more int32 (a multiple of 4 bytes, at least 8): a damaged .mat file");
   const auto e = patched("endian.mat", 126, "XY");
   EXPECT_EQ(message(e), e.string() + ": byte 126: the header's endian indicator is 0x5859, expected 'IM' or 'MI' "
                                      "(a v5, v7 or v7.3 .mat file; MATLAB v4 files are not read)");
