@@ -10,6 +10,21 @@
 
 namespace geaware::control {
 
+std::size_t knotInterval(const double* knots_m, std::size_t n, double h_m) noexcept {
+  std::size_t j = 0;
+  while (j + 2 < n && h_m >= knots_m[j + 1]) ++j;
+  return j;
+}
+
+double knotCurve(const double* knots_m, const double* values, std::size_t n, double h_m) noexcept {
+  if (std::isnan(h_m)) return h_m;
+  if (h_m <= knots_m[0]) return values[0];
+  if (h_m >= knots_m[n - 1]) return values[n - 1];
+  const std::size_t j = knotInterval(knots_m, n, h_m);
+  const double t = (h_m - knots_m[j]) / (knots_m[j + 1] - knots_m[j]);
+  return (1.0 - t) * values[j] + t * values[j + 1];
+}
+
 std::vector<model::FieldError> GroundEffectLearnerParams::validate() const {
   std::vector<model::FieldError> e;
   model::FieldChecker c(e);
@@ -123,8 +138,7 @@ LearnerSample GroundEffectLearner::update(double h_m, double f_g, double tilt_ra
   }
   // y = (1−t)·θ_j + t·θ_j+1 + b in the interval [h_j, h_j+1] holding h (the last knot belongs to
   // the last interval).
-  std::size_t j = 0;
-  while (j + 2 < n_ && h_m >= h_[j + 1]) ++j;
+  const std::size_t j = knotInterval(h_.data(), n_, h_m);
   const double t = (h_m - h_[j]) / (h_[j + 1] - h_[j]);
   const double p0 = 1.0 - t;
   const double p1 = t;
@@ -244,13 +258,7 @@ double GroundEffectLearner::dataSamples(std::size_t k) const noexcept {
 }
 
 double GroundEffectLearner::ratio(double h_m) const noexcept {
-  if (std::isnan(h_m)) return h_m;
-  if (h_m <= h_[0]) return theta_[0];
-  if (h_m >= h_[n_ - 1]) return theta_[n_ - 1];
-  std::size_t j = 0;
-  while (j + 2 < n_ && h_m >= h_[j + 1]) ++j;
-  const double t = (h_m - h_[j]) / (h_[j + 1] - h_[j]);
-  return (1.0 - t) * theta_[j] + t * theta_[j + 1];
+  return knotCurve(h_.data(), theta_.data(), n_, h_m);
 }
 
 }  // namespace geaware::control

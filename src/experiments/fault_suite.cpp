@@ -2,6 +2,7 @@
 #include "geaware/experiments/fault_suite.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -20,6 +21,9 @@
 namespace geaware::experiments {
 namespace {
 
+/// The index of a controller flag in FlightResult::flag_counts.
+constexpr std::size_t flagBit(std::uint32_t flag) noexcept { return static_cast<std::size_t>(std::countr_zero(flag)); }
+
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
@@ -37,19 +41,6 @@ Fault fault(FaultKind kind, double value, double duration_s = kInf, int motor = 
   return f;
 }
 
-FaultFlight toFaultFlight(std::uint64_t seed, const FlightResult& fr, const SuiteFlight& base) {
-  FaultFlight f;
-  f.flight = base;
-  f.flight.seed = seed;
-  f.terminated = fr.flag_counts[10] > 0;
-  f.non_finite_commands = fr.throttle_faults;
-  f.motor_failure_ticks = fr.flag_counts[9];
-  f.height_invalid_ticks = fr.flag_counts[1];
-  f.pose_stale_ticks = fr.estimation.eskf_flag_ticks[0];
-  f.imu_clipped_ticks = fr.estimation.eskf_flag_ticks[1];
-  f.pose_rejected_ticks = fr.estimation.eskf_flag_ticks[2];
-  return f;
-}
 
 /// The cell's outcome, against the same controller's baseline cell.
 void judge(FaultCell& c, const FaultCell* baseline) {
@@ -87,6 +78,20 @@ void judge(FaultCell& c, const FaultCell* baseline) {
 }
 
 }  // namespace
+
+FaultFlight toFaultFlight(std::uint64_t seed, const FlightResult& fr, const SuiteFlight& base) {
+  FaultFlight f;
+  f.flight = base;
+  f.flight.seed = seed;
+  f.terminated = fr.flag_counts[flagBit(control::kFlagTerminated)] > 0;
+  f.non_finite_commands = fr.throttle_faults;
+  f.motor_failure_ticks = fr.flag_counts[flagBit(control::kFlagMotorFailure)];
+  f.height_invalid_ticks = fr.flag_counts[flagBit(control::kFlagHeightInvalid)];
+  f.pose_stale_ticks = fr.estimation.eskf_flag_ticks[0];
+  f.imu_clipped_ticks = fr.estimation.eskf_flag_ticks[1];
+  f.pose_rejected_ticks = fr.estimation.eskf_flag_ticks[2];
+  return f;
+}
 
 std::vector<FaultCase> faultCases() {
   const double deg = std::numbers::pi / 180.0;

@@ -311,13 +311,8 @@ class FlightLoop {
 }  // namespace
 
 double LearnedGroundEffect::ratio(double h_m) const noexcept {
-  if (heights_m.empty() || std::isnan(h_m)) return std::nan("");
-  if (h_m <= heights_m.front()) return f_g.front();
-  if (h_m >= heights_m.back()) return f_g.back();
-  std::size_t j = 0;
-  while (j + 2 < heights_m.size() && h_m >= heights_m[j + 1]) ++j;
-  const double t = (h_m - heights_m[j]) / (heights_m[j + 1] - heights_m[j]);
-  return (1.0 - t) * f_g[j] + t * f_g[j + 1];
+  if (heights_m.size() < 2 || f_g.size() != heights_m.size()) return std::nan("");
+  return control::knotCurve(heights_m.data(), f_g.data(), heights_m.size(), h_m);
 }
 
 FlightResult runFlight(const FlightScenario& s, FlightObserver* observer) {

@@ -19,6 +19,7 @@
 
 #include "geaware/control/controller_schema.hpp"
 #include "geaware/experiments/calibration.hpp"
+#include "geaware/experiments/fault_suite.hpp"
 #include "geaware/experiments/neural_baseline.hpp"
 #include "geaware/experiments/world_setup.hpp"
 #include "geaware/io/json.hpp"
@@ -269,10 +270,10 @@ std::string sweepRecord(const SweepSpec& spec, const SweepKey& k, const FlightRe
   j["rmse_z_cm"] = f.rmse_z_cm;
   j["max_cm"] = f.max_cm;
   j["guard_active_s"] = f.guard_active_s ? io::Json(*f.guard_active_s) : io::Json(nullptr);
-  // The fault suite's: the controller cut the motors (kFlagTerminated); throttles the plant
-  // had to replace.
-  j["terminated"] = r.flag_counts[10] > 0;
-  j["non_finite_commands"] = r.throttle_faults;
+  // The fault suite's: the controller cut the motors; throttles the plant had to replace.
+  const FaultFlight ff = toFaultFlight(k.seed, r, f);
+  j["terminated"] = ff.terminated;
+  j["non_finite_commands"] = ff.non_finite_commands;
   j["simulated_s"] = r.simulated_s;
   // Compact, NaN as null, invalid UTF-8 replaced: one line, the same bytes everywhere.
   return j.dump(-1, ' ', false, io::Json::error_handler_t::replace);

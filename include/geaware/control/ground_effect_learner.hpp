@@ -67,6 +67,13 @@ struct GroundEffectLearnerParams {
 };
 
 /// Why a sample was or was not used.
+/// The index j of the interval [h_j, h_j+1] of `knots_m` (n ≥ 2, increasing) that holds h; the
+/// last knot belongs to the last interval, heights outside to the end intervals.
+[[nodiscard]] std::size_t knotInterval(const double* knots_m, std::size_t n, double h_m) noexcept;
+/// The curve through (knots_m[k], values[k]), linear between knots, the end values held
+/// outside; NaN for a NaN h.
+[[nodiscard]] double knotCurve(const double* knots_m, const double* values, std::size_t n, double h_m) noexcept;
+
 enum class LearnerSample : std::uint8_t {
   kUsed, kOffset, kNonFinite, kOutsideKnots, kOutlier, kTilted, kFast, kClimbing
 };

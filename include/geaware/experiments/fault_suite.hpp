@@ -72,6 +72,10 @@ struct FaultFlight {
   std::uint64_t height_invalid_ticks = 0;///< ticks with the controller's kFlagHeightInvalid
 };
 
+/// A flight's result as a fault-suite flight: `base` (toSuiteFlight) with what the controller and
+/// the estimator flagged.
+[[nodiscard]] FaultFlight toFaultFlight(std::uint64_t seed, const FlightResult& fr, const SuiteFlight& base);
+
 struct FaultCell {
   SuiteCell cell;                 ///< case, controller, height, speed, per-seed flights
   std::vector<FaultFlight> flights;

@@ -137,7 +137,7 @@ void prepareSweepDirectory(const SweepSpec& spec, const std::filesystem::path& d
 void writeSweepFlight(const std::filesystem::path& dir, const std::string& key,
                       std::string_view record);
 /// The merged document: {"geaware_version", "sweep": {cases, controllers, scenarios, seeds},
-/// "flights", "records": [each record, in key order]} as text, one record a line. Throws
+/// "flights", "records": [each record, in key order]} as io::dumpJson's text. Throws
 /// std::runtime_error naming the number of missing keys and the first one.
 [[nodiscard]] std::string mergeSweepText(const SweepSpec& spec, const std::filesystem::path& dir);
 /// mergeSweepText written atomically to DIR/results.json; returns its path.
