@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // One full controller update (flat map to throttles) for the paper's configurations.
 // Targets: ≤ 1 µs median for model/model_indi (issue 1); ≤ 300 ns for model:model_indi and
-// ≤ 400 ns for `recommended` (issue 15, not met: docs/benchmarks.md). Inputs cycle through 1024
+// ≤ 400 ns for `recommended` (issue 15, not met: docs/benchmarks.md); with per-rotor ground
+// effect ("+rotors") ≤ 1.3× model:model_indi (issue 13). Inputs cycle through 1024
 // samples of the 1 m/s lemniscate at 0.12 m with a perturbed estimate and a disturbance-observer
 // estimate, so every branch does real work.
 #include <cmath>
@@ -46,6 +47,11 @@ const std::vector<ControllerInput>& inputs() {
       // The disturbance observer's estimate (`recommended` feeds it forward).
       c.external_accel_W = Eigen::Vector3d(0.05, -0.02, 0.3 + 0.1 * std::sin(i * 0.05));
       c.external_accel_valid = true;
+      // The ranger's view of the ground (read by "+rotors" only): a 10 cm table edge under
+      // two rotors in half of the samples, and a ground normal tilted by 3°.
+      c.ground_shape_valid = true;
+      c.ground_normal_W = Eigen::Vector3d(std::sin(0.05), 0.0, std::cos(0.05));
+      if ((i / 64) % 2 == 1) c.rotor_height_offset_m = {0.1, 0.0, 0.0, 0.1};
       out.push_back(c);
     }
     return out;
@@ -98,5 +104,20 @@ void BM_ControllerRecommended(benchmark::State& s) {
   runController(s, p);
 }
 BENCHMARK(BM_ControllerRecommended);
+
+/// Per-rotor ground effect (issue 13 item 1; its target: ≤ 1.3× BM_ControllerModelModelIndi in
+/// the same run).
+void runNamed(benchmark::State& s, const char* name) {
+  ControllerParams p;
+  if (!parseConfiguration(name, p)) {
+    s.SkipWithError("not a configuration");
+    return;
+  }
+  runController(s, p);
+}
+void BM_ControllerModelModelIndiPerRotor(benchmark::State& s) { runNamed(s, "model:model_indi+rotors"); }
+BENCHMARK(BM_ControllerModelModelIndiPerRotor);
+void BM_ControllerRecommendedPerRotor(benchmark::State& s) { runNamed(s, "recommended+rotors"); }
+BENCHMARK(BM_ControllerRecommendedPerRotor);
 
 }  // namespace

@@ -44,6 +44,7 @@ struct FlyOptions {
   int laps = 1;
   double from_height_m = 1.5;
   std::uint64_t seed = 1;
+  bool seed_given = false;  ///< --seed on the command line (it then replaces a scenario file's)
   bool no_turbulence = false;
   bool png = false;
   bool quiet = false;
@@ -66,9 +67,10 @@ const CLI::Validator kControllerSpec(
       return "--controller '" + text +
              "': expected 'recommended' or ACC:TORQUE with ACC one of none, indi, neural, model "
              "and TORQUE one of none, model, indi, model_indi (e.g. model:model_indi), optionally "
-             "followed by +learn or +learn0 (F_G learned in flight)";
+             "followed by +rotors (per-rotor ground effect from the ranger), then by +learn or "
+             "+learn0 (F_G learned in flight)";
     },
-    "recommended|ACC:TORQUE[+learn|+learn0]");
+    "recommended|ACC:TORQUE[+rotors][+learn|+learn0]");
 
 experiments::TrajectoryOptions flightPlan(const FlyOptions& o) {
   experiments::TrajectoryOptions p;
@@ -89,9 +91,12 @@ experiments::FlightScenario scenarioOf(const FlyOptions& o) {
   if (!o.scenario.empty()) {
     // The scenario file fixes vehicle, trajectory, controller, terrain, disturbances and seed;
     // the options that would contradict it are refused at parse time. --truth replaces its
-    // world.
+    // world, --controller its configuration (the gains of its controller_params stay), --seed
+    // its seed.
     s = experiments::loadScenarioFile(o.scenario, world ? &*world : nullptr,
                                       std::isnan(o.max_sim_s) ? std::nullopt : std::optional<double>(o.max_sim_s));
+    if (!o.controller.empty()) (void)parseController(o.controller, s.controller);  // checked by kControllerSpec
+    if (o.seed_given) s.seed = o.seed;
   } else {
     s.vehicle = o.vehicle.empty() ? io::builtinVehicle() : io::loadVehicleFile(o.vehicle);
     experiments::applyWorld(
@@ -248,9 +253,10 @@ void addFlightOptions(CLI::App* cmd, FlyOptions& o) {
                   "recommended (geaware's: model:model_indi with disturbance feed-forward, "
                   "integral action and a clearance guard; docs/controller.md) or ACC:TORQUE, ACC "
                   "in none|indi|neural|model, TORQUE in none|model|indi|model_indi (the paper's: "
-                  "model:model_indi)")
+                  "model:model_indi), optionally followed by +rotors (per-rotor ground effect) and "
+                  "+learn or +learn0 (F_G learned in flight); replaces a scenario file's")
       ->check(kControllerSpec);
-  cmd->add_option("--seed", o.seed, "seed of sensors and disturbances")->capture_default_str()->check(seed());
+  cmd->add_option("--seed", o.seed, "seed of sensors and disturbances; replaces a scenario file's")->capture_default_str()->check(seed());
   cmd->add_flag("--no-turbulence", o.no_turbulence, "switch off the near-ground turbulence");
 }
 
@@ -304,18 +310,20 @@ Runner addFlyCommand(CLI::App& app) {
                  "with the built-in vehicle, the ideal world of --vehicle FILE otherwise)");
   auto* scenario = cmd->add_option("--scenario", o->scenario,
                                    "flight scenario YAML file (docs/scenario-file.md); replaces "
-                                   "--vehicle, --trajectory…, --controller, --seed, --no-turbulence")
+                                   "--vehicle, --trajectory…, --no-turbulence (--controller, --seed "
+                                   "and --truth replace its own)")
                        ->check(CLI::ExistingFile);
   addFlightOptions(cmd, *o);
   addOutputOptions(cmd, *o);
   // Either a scenario file or the trajectory options, never both.
-  for (const char* name : {"--trajectory", "--height", "--controller", "--vehicle", "--speed",
-                           "--extent-x", "--extent-y", "--laps", "--from-height", "--seed",
+  for (const char* name : {"--trajectory", "--height", "--vehicle", "--speed",
+                           "--extent-x", "--extent-y", "--laps", "--from-height",
                            "--no-turbulence"}) {
     scenario->excludes(cmd->get_option(name));
   }
   // Combinations CLI11 cannot express: usage errors (exit status 2) at parse time.
-  cmd->parse_complete_callback([o]() {
+  cmd->parse_complete_callback([o, cmd]() {
+    o->seed_given = cmd->count("--seed") > 0;
     if (o->scenario.empty() && (o->trajectory.empty() || !std::isfinite(o->height_m) || o->controller.empty())) {
       throw CLI::ValidationError("geaware fly", "give --scenario FILE, or --trajectory, --height and --controller");
     }

@@ -90,6 +90,7 @@ Controller::Controller(const model::VehicleModel& vehicle, ControllerParams para
       dt_s_(1.0 / params_.rate_hz),
       min_rotor_plane_height_m_(vehicle.params().min_rotor_plane_height_m),
       arm_m_(0.5 * vehicle.params().diagonal_rotor_distance_m),
+      rotors_B_(model::Mixer::rotorPositions_B(vehicle.params().diagonal_rotor_distance_m)),
       mem_(params_.filter_cutoff_hz, params_.rate_hz, kFarFromGroundM) {
   if (params_.acceleration == AccelerationCompensation::kNeural && !residual_) {
     throw std::invalid_argument("acceleration compensation 'neural' needs a residual-force model");
@@ -135,7 +136,8 @@ bool outputFinite(const ControllerOutput& out) noexcept {
             out.q_des_WB.coeffs().allFinite() && out.attitude_error.allFinite() &&
             out.w_des_B.allFinite() && out.w_dot_des_B.allFinite() && out.tau_des_B.allFinite() &&
             out.tau_hat_B.allFinite() && out.n_des_rpm.allFinite() && out.a_dob_W.allFinite() &&
-            out.a_int_W.allFinite();
+            out.a_int_W.allFinite() && out.a_ground_shape_W.allFinite() &&
+            out.tau_ground_shape_B.allFinite();
   for (double t : out.throttle) ok = ok && std::isfinite(t);
   return ok;
 }
@@ -189,7 +191,8 @@ Controller::Measured Controller::measure(const ControllerInput& in,
 }
 
 Eigen::Vector3d Controller::disturbanceResidual(const ControllerInput& in, double thrust_ref_N,
-                                                const Eigen::Matrix3d& R) noexcept {
+                                                const Eigen::Matrix3d& R,
+                                                const Eigen::Vector3d& a_shape_W) noexcept {
   if (!(params_.dob_time_constant_s > 0.0)) return Eigen::Vector3d::Zero();
   if (in.external_accel_valid && in.external_accel_W.allFinite()) {
     // What the model already accounts for in ã_ext: at the measured height, the extra thrust
@@ -202,6 +205,7 @@ Eigen::Vector3d Controller::disturbanceResidual(const ControllerInput& in, doubl
     const Eigen::Vector2d d = model ? drag_.coefficients(h) : drag_.highAltitudeCoefficients();
     Eigen::Vector3d explained = model::RotorDragModel::force_W(R, in.estimate.v_W, d) / mass_kg_;
     if (model) explained += ground_effect_.thrustRatio(h) * thrust_ref_N / mass_kg_ * R.col(2);
+    if (params_.per_rotor_ground_effect) explained += a_shape_W;  // partial ground effect
     const double lim = params_.dob_limit_mps2;
     const Eigen::Vector3d raw = (in.external_accel_W - explained).cwiseMax(-lim).cwiseMin(lim);
     // First-order low-pass, backward Euler: τ_d·ḋ = raw − d; like every filter of the
@@ -241,8 +245,10 @@ Eigen::Vector3d Controller::integralTerm(const Eigen::Vector3d& e_p, std::uint32
 }
 
 Controller::Additions Controller::additions(const ControllerInput& in, double thrust_ref_N,
-                                            const Eigen::Matrix3d& R, std::uint32_t& flags) noexcept {
+                                            const Eigen::Matrix3d& R, const Eigen::Vector3d& a_shape_W,
+                                            std::uint32_t& flags) noexcept {
   Additions x;
+  x.a_shape = a_shape_W;
   x.reference = in.reference;
   if (params_.clearance_guard && mem_.have_ground_) {
     // The floor: the landing gear's rotor-plane height plus the margin above the ground the
@@ -271,7 +277,7 @@ Controller::Additions Controller::additions(const ControllerInput& in, double th
     }
   }
   x.a_int = integralTerm(x.reference.p_W - in.estimate.p_W, flags);
-  x.a_dob = disturbanceResidual(in, thrust_ref_N, R);
+  x.a_dob = disturbanceResidual(in, thrust_ref_N, R, a_shape_W);
   return x;
 }
 
@@ -310,6 +316,7 @@ Eigen::Vector3d Controller::thrustVectorCommand(const ControllerInput& in,
       // a_D = −R·(D/m)·Rᵀ·v_ref: the drag to be overcome is added back.
       a_des -= model::RotorDragModel::force_W(R, r.v_W, d) / mass_kg_;
       if (model) a_des -= ref.thrust_N / mass_kg_ * ground_effect_.thrustRatio(h) * z_B;  // a_G
+      if (params_.per_rotor_ground_effect) a_des -= x.a_shape;  // zero unless acceleration model
       f_cmd = a_des + Eigen::Vector3d(0.0, 0.0, kGravity);
       if (params_.acceleration == AccelerationCompensation::kNeural) {
         // Shi et al. 2019: the residual depends on the rotor speeds the command produces, so
@@ -342,6 +349,45 @@ Eigen::Vector3d Controller::thrustVectorCommand(const ControllerInput& in,
     flags |= kFlagTiltLimited;
   }
   return f_cmd;
+}
+
+Controller::GroundShapeTerms Controller::groundShapeTerms(const ControllerInput& in, double h,
+                                                          double thrust_N,
+                                                          const Eigen::Matrix3d& R) noexcept {
+  GroundShapeTerms g;
+  if (!params_.per_rotor_ground_effect) return g;
+  // The last valid shape is held, like the height: offsets finite and within the far-from-ground
+  // height, the normal a finite unit vector no steeper than 60°.
+  bool ok = in.ground_shape_valid && in.ground_normal_W.allFinite() &&
+            std::abs(in.ground_normal_W.norm() - 1.0) < 1e-3 && in.ground_normal_W.z() > 0.5;
+  for (double d : in.rotor_height_offset_m) ok = ok && std::isfinite(d) && std::abs(d) <= kFarFromGroundM;
+  if (ok) {
+    for (int i = 0; i < 4; ++i) mem_.rotor_height_offset_m_[i] = in.rotor_height_offset_m[static_cast<std::size_t>(i)];
+    mem_.ground_normal_W_ = in.ground_normal_W.normalized();
+  }
+  // Rotor i flies at h + δ_i above the surface beneath it: F_G(h + δ_i) of a quarter of the
+  // thrust, against F_G(h) for all four in the vehicle-level model (docs/controller.md).
+  const double f0 = ground_effect_.thrustRatio(h);
+  double df_sum = 0.0;
+  Eigen::Vector3d tau_B = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < 4; ++i) {
+    const double df = ground_effect_.thrustRatio(h + mem_.rotor_height_offset_m_[static_cast<int>(i)]) - f0;
+    df_sum += df;
+    // r_i × (0, 0, ΔT_i) = ΔT_i·(r_y, −r_x, 0), ΔT_i = T/4·ΔF_i.
+    tau_B += (0.25 * thrust_N * df) * Eigen::Vector3d(rotors_B_[i].y(), -rotors_B_[i].x(), 0.0);
+  }
+  const Eigen::Vector3d z_B = R.col(2);
+  if (params_.acceleration == AccelerationCompensation::kModel) {
+    g.a_W = (0.25 * df_sum * thrust_N / mass_kg_) * z_B;
+  }
+  if (usesJPrime(params_.torque)) {
+    // Leveling toward the ground's normal n: M_G·T·(z_B × n) (paper eq. 13 with n for z_W), of
+    // which J'(h) models the part M_G·T·(z_B × z_W); the rest is predicted here.
+    const Eigen::Vector3d extra_W =
+        ground_effect_.levelingCoefficient(h) * thrust_N * z_B.cross(mem_.ground_normal_W_ - Eigen::Vector3d::UnitZ());
+    g.tau_B = tau_B + R.transpose() * extra_W;
+  }
+  return g;
 }
 
 double Controller::allocatedYawTorque(const ControllerInput& in, double tau_z) noexcept {
@@ -422,7 +468,8 @@ ControllerOutput Controller::step(const ControllerInput& in) noexcept {
 
   // 2. Acceleration command (paper eq. 31, with geaware's additions when switched on) and the
   //    specific thrust vector.
-  const Additions x = additions(in, ref.thrust_N, R, flags);
+  const GroundShapeTerms shape = groundShapeTerms(in, h, ref.thrust_N, R);
+  const Additions x = additions(in, ref.thrust_N, R, shape.a_W, flags);
   Eigen::Vector3d a_des;
   const Eigen::Vector3d f_cmd = thrustVectorCommand(in, ref, h, m, x, a_des, flags);
 
@@ -443,6 +490,14 @@ ControllerOutput Controller::step(const ControllerInput& in) noexcept {
     tau = m.tau_hat + J.cwiseProduct(w_dot_des - m.w_dot_f);
   } else {
     tau = J.cwiseProduct(w_dot_des) + w_des.cross(J.cwiseProduct(w_des));
+  }
+  if (params_.per_rotor_ground_effect) {
+    // The predicted ground torque is cancelled. Torque INDI's τ̂_B already holds the torque the
+    // rotors make against it, through its filter: only the part the filtered measurement does
+    // not hold yet (the prediction less its filtered self) is fed forward, so a steady torque
+    // is not cancelled twice.
+    const Eigen::Vector3d held = mem_.ground_torque_filter_.update(shape.tau_B);
+    tau -= usesIncrementalTorque(params_.torque) ? Eigen::Vector3d(shape.tau_B - held) : shape.tau_B;
   }
 
   // 5. Rotor speeds and throttles: inverse throttle curve (at the measured battery voltage, when
@@ -478,6 +533,8 @@ ControllerOutput Controller::step(const ControllerInput& in) noexcept {
   out.height_used_m = h;
   out.a_dob_W = x.a_dob;
   out.a_int_W = x.a_int;
+  out.a_ground_shape_W = shape.a_W;
+  out.tau_ground_shape_B = shape.tau_B;
   out.guard_min_accel_z_mps2 = x.a_z_min;
   out.z_cmd_m = x.reference.p_W.z();
   out.flags = flags;

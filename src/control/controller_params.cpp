@@ -93,6 +93,13 @@ void validateAdditions(const ControllerParams& p, model::FieldChecker& c) {
     }
     for (auto& e : p.learner.validate()) c.fail("learner." + e.field, e.value, e.expected);
   }
+  if (p.per_rotor_ground_effect && p.acceleration != AccelerationCompensation::kModel &&
+      p.torque != TorqueCompensation::kModel && p.torque != TorqueCompensation::kModelIndi) {
+    c.fail("per_rotor_ground_effect", "on",
+           std::string("off with '") + toString(p.acceleration) + ":" + toString(p.torque) +
+               "': the per-rotor terms feed the model's force (acceleration 'model') and torque "
+               "(torque 'model' or 'model_indi')");
+  }
 }
 
 }  // namespace
@@ -127,7 +134,7 @@ std::vector<model::FieldError> ControllerParams::validate() const {
 
 bool ControllerParams::hasAdditions() const noexcept {
   return dob_time_constant_s > 0.0 || k_i_per_s3.any() || clearance_guard || rotor_speed_ki_per_s > 0.0 ||
-         learn_ground_effect != GroundEffectLearning::kOff;
+         learn_ground_effect != GroundEffectLearning::kOff || per_rotor_ground_effect;
 }
 
 ControllerParams recommendedControllerParams() {
@@ -166,7 +173,8 @@ bool sameConfiguration(const ControllerParams& p, const ControllerParams& q) {
          p.guard_reaction_time_s == q.guard_reaction_time_s && p.guard_rate_per_s == q.guard_rate_per_s &&
          p.rotor_speed_ki_per_s == q.rotor_speed_ki_per_s &&
          p.rotor_speed_limit_throttle == q.rotor_speed_limit_throttle && p.rotor_speed_lag_s == q.rotor_speed_lag_s &&
-         p.learn_ground_effect == q.learn_ground_effect;
+         p.learn_ground_effect == q.learn_ground_effect &&
+         p.per_rotor_ground_effect == q.per_rotor_ground_effect;
 }
 
 /// Copies `q`'s switches and additions into `p`.
@@ -186,52 +194,58 @@ void setConfiguration(ControllerParams& p, const ControllerParams& q) {
   p.rotor_speed_limit_throttle = q.rotor_speed_limit_throttle;
   p.rotor_speed_lag_s = q.rotor_speed_lag_s;
   p.learn_ground_effect = q.learn_ground_effect;
+  p.per_rotor_ground_effect = q.per_rotor_ground_effect;
 }
 
 }  // namespace
 
 std::string configurationName(const ControllerParams& p) {
+  // Suffixes for the switches that extend any configuration: "+rotors", then "+learn(0)".
   const char* learn = p.learn_ground_effect == GroundEffectLearning::kFromVehicle   ? "+learn"
                       : p.learn_ground_effect == GroundEffectLearning::kFromNothing ? "+learn0"
                                                                                      : "";
-  ControllerParams unlearned = p;
-  unlearned.learn_ground_effect = GroundEffectLearning::kOff;
-  if (sameConfiguration(unlearned, recommendedControllerParams())) return std::string("recommended") + learn;
+  const std::string suffix = std::string(p.per_rotor_ground_effect ? "+rotors" : "") + learn;
+  ControllerParams plain = p;
+  plain.learn_ground_effect = GroundEffectLearning::kOff;
+  plain.per_rotor_ground_effect = false;
+  if (sameConfiguration(plain, recommendedControllerParams())) return "recommended" + suffix;
   std::string name = std::string(toString(p.acceleration)) + ":" + toString(p.torque);
   if (p.dob_time_constant_s > 0.0) name += "+dob";
   if (p.k_i_per_s3.any()) name += "+integral";
   if (p.clearance_guard) name += "+guard";
   if (p.rotor_speed_ki_per_s > 0.0) name += "+speedloop";
-  return name + learn;
+  return name + suffix;
 }
 
-bool parseConfiguration(const std::string& text_with_learning, ControllerParams& p) {
-  // A trailing "+learn" / "+learn0": F_G learned in flight, from the vehicle file's or from none.
-  std::string text = text_with_learning;
+bool parseConfiguration(const std::string& text_with_switches, ControllerParams& p) {
+  // Trailing switches, in this order: "+rotors" (per-rotor ground effect), then "+learn" /
+  // "+learn0" (F_G learned in flight, from the vehicle file's or from none).
+  std::string text = text_with_switches;
   GroundEffectLearning learn = GroundEffectLearning::kOff;
-  const auto endsWith = [&](const std::string& suffix) {
-    return text.size() > suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+  const auto strip = [&](const std::string& suffix) {
+    const bool ends = text.size() > suffix.size() &&
+                      text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+    if (ends) text.resize(text.size() - suffix.size());
+    return ends;
   };
-  if (endsWith("+learn0")) {
+  if (strip("+learn0")) {
     learn = GroundEffectLearning::kFromNothing;
-    text.resize(text.size() - 7);
-  } else if (endsWith("+learn")) {
+  } else if (strip("+learn")) {
     learn = GroundEffectLearning::kFromVehicle;
-    text.resize(text.size() - 6);
   }
-  if (text == "recommended") {
-    ControllerParams q = recommendedControllerParams();
-    q.learn_ground_effect = learn;
-    setConfiguration(p, q);
-    return true;
-  }
-  const auto colon = text.find(':');
+  const bool rotors = strip("+rotors");
   ControllerParams q;  // the paper's row: no additions
-  if (colon == std::string::npos || !parse(text.substr(0, colon), q.acceleration) ||
-      !parse(text.substr(colon + 1), q.torque)) {
-    return false;
+  if (text == "recommended") {
+    q = recommendedControllerParams();
+  } else {
+    const auto colon = text.find(':');
+    if (colon == std::string::npos || !parse(text.substr(0, colon), q.acceleration) ||
+        !parse(text.substr(colon + 1), q.torque)) {
+      return false;
+    }
   }
   q.learn_ground_effect = learn;
+  q.per_rotor_ground_effect = rotors;
   setConfiguration(p, q);
   return true;
 }

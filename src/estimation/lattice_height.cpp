@@ -140,6 +140,10 @@ LatticeHeight LatticeHeightEstimator::estimate(const model::RangerFrame& frame,
       const int o = surfaceUnder(w, P, out.rotor_support_distance_m[r]);
       const GroundPlane& pl = out.planes[static_cast<std::size_t>(o)];
       out.rotor_height_m[r] = (pl.normal_W.dot(P) - pl.offset_m) / pl.normal_W.z();
+      out.rotor_height_offset_m[r] =
+          o == g ? 0.0
+                 : out.rotor_height_m[r] -
+                       (ground.normal_W.dot(P) - ground.offset_m) / ground.normal_W.z();
     }
   }
   out.status = LatticeStatus::kOk;

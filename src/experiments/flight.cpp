@@ -166,6 +166,8 @@ class FlightLoop {
       if (lh.valid) {
         ++result_.estimation.height_valid_frames;
         height_m_ = lh.height_m;
+        rotor_height_offset_m_ = lh.rotor_height_offset_m;
+        ground_normal_W_ = lh.normal_W;
         height_t_s_ = r.ranger->t_s;
         have_height_ = true;
         if (inTrajectory(t)) est_h_.add(lh.height_m - heightAbove(*terrain_, x.p_W));
@@ -216,6 +218,9 @@ class FlightLoop {
       in.accel_B = eo.accel_B;
       in.height_valid = have_height_ && t - height_t_s_ <= s_.max_height_age_s + 0.5 * dt_;
       in.height_m = height_m_;
+      in.rotor_height_offset_m = rotor_height_offset_m_;
+      in.ground_normal_W = ground_normal_W_;
+      in.ground_shape_valid = in.height_valid;
       in.rotor_speeds_rpm = telemetry_rpm_;
       // The disturbance observer (paper eq. 6) on exactly the controller's inputs.
       tick_.disturbance = observer_.update({in.t_s, in.gyro_B, in.accel_B, in.rotor_speeds_rpm,
@@ -301,6 +306,8 @@ class FlightLoop {
   Eigen::Vector4d telemetry_rpm_;
   bool have_telemetry_ = false;
   double height_m_ = 0.0;
+  std::array<double, 4> rotor_height_offset_m_{};  // the last valid frame's, LatticeHeight [m]
+  Eigen::Vector3d ground_normal_W_ = Eigen::Vector3d::UnitZ();
   double height_t_s_ = -1.0;
   bool have_height_ = false;
   double last_imu_t_s_ = 0.0;

@@ -191,13 +191,13 @@ FlightScenario parseScenarioYaml(std::string_view yaml_text, const std::string& 
   s.trajectory = readTrajectory(traj_section);
 
   if (root.isScalar("controller")) {
-    // geaware's configuration (docs/controller.md) in place of the two switches.
+    // A configuration by name (docs/controller.md), as --controller takes it, in place of the
+    // two switches: "recommended", "model:model_indi+rotors", "recommended+learn0", …
     const std::string name = root.text("controller");
-    if (name == "recommended") {
-      (void)control::parseConfiguration("recommended", s.controller);
-    } else {
+    if (!control::parseConfiguration(name, s.controller)) {
       root.problem("controller", "got '" + name +
-                                     "', expected 'recommended' or a map with acceleration "
+                                     "', expected 'recommended' or ACC:TORQUE, optionally followed "
+                                     "by +rotors and +learn or +learn0, or a map with acceleration "
                                      "and torque");
     }
   } else {

@@ -69,6 +69,7 @@ ControllerInput hoverInput(double h, double t_s) {
   in.rotor_speeds_rpm.setConstant(paperVehicle().hoverSpeedRpm(h));
   in.external_accel_W.setZero();
   in.external_accel_valid = true;
+  in.ground_shape_valid = true;  // one plane ("+rotors" reads it)
   return in;
 }
 
@@ -110,6 +111,11 @@ ControllerInput garbageInput(std::mt19937_64& rng, double h, double t_s, double 
   garble(rng, in.rotor_speeds_rpm, 1e4, p);
   garble(rng, in.external_accel_W, 1.0, p);
   if (hit(rng)) in.external_accel_valid = !in.external_accel_valid;
+  for (double& d : in.rotor_height_offset_m) {
+    if (hit(rng)) d = garbage(rng, 0.1);
+  }
+  garble(rng, in.ground_normal_W, 1.0, p);
+  if (hit(rng)) in.ground_shape_valid = !in.ground_shape_valid;
   if (hit(rng)) in.t_s = std::bernoulli_distribution(0.5)(rng) ? kNaN : t_s - 1.0;
   return in;
 }
@@ -144,6 +150,13 @@ std::vector<Config> everyConfiguration() {
   ControllerParams learning = recommendedControllerParams();
   learning.learn_ground_effect = GroundEffectLearning::kFromNothing;  // F_G learned in flight
   configs.push_back({"recommended+learn0", learning});
+  ControllerParams per_rotor = recommendedControllerParams();
+  per_rotor.per_rotor_ground_effect = true;  // the ranger's ground shape read too
+  configs.push_back({"recommended+rotors", per_rotor});
+  ControllerParams per_rotor_model;
+  per_rotor_model.torque = TorqueCompensation::kModel;
+  per_rotor_model.per_rotor_ground_effect = true;
+  configs.push_back({"model:model+rotors", per_rotor_model});
   return configs;
 }
 
@@ -261,7 +274,7 @@ TEST(ControllerGarbage, EverySingleGarbageFieldAloneKeepsTheThrottlesSane) {
   const double t_hover = hoverThrottle();
   std::string failures;
   for (const Config& cfg : everyConfiguration()) {
-    for (int field = 0; field < 16; ++field) {
+    for (int field = 0; field < 18; ++field) {
       for (double v : values) {
         Controller c(paperVehicle(), cfg.params);
         double t = 0.0;
@@ -284,7 +297,9 @@ TEST(ControllerGarbage, EverySingleGarbageFieldAloneKeepsTheThrottlesSane) {
           case 12: bad.t_s = v; break;
           case 13: bad.reference.j_W.z() = v; break;
           case 14: bad.reference.yaw_rate_radps = v; break;
-          default: bad.estimate.q_WB.coeffs() *= v; break;
+          case 15: bad.estimate.q_WB.coeffs() *= v; break;
+          case 16: bad.rotor_height_offset_m[1] = v; break;
+          default: bad.ground_normal_W.x() = v; break;
         }
         out = c.update(bad);
         const std::string what = cfg.name + ", field " + std::to_string(field) + " = " + std::to_string(v);

@@ -122,8 +122,10 @@ TEST(LatticeHeight, FlatGroundIsExactWithoutNoise) {
   EXPECT_EQ(h.surfaces, 1);
   EXPECT_LT(h.rms_residual_m, 1e-9);
   const auto rotors = geaware::model::Mixer::rotorPositions_B(kB);
-  for (std::size_t i = 0; i < 4; ++i)
+  for (std::size_t i = 0; i < 4; ++i) {
     EXPECT_NEAR(h.rotor_height_m[i], 0.5 + (pose.q_WB * rotors[i]).z(), 1e-9);
+    EXPECT_EQ(h.rotor_height_offset_m[i], 0.0) << "one surface: no partial ground effect";
+  }
 }
 
 /// 1 cm range noise (a ToF ranger's order): height within 3 mm; normal within 3° (at 0.22 m
@@ -285,6 +287,13 @@ TEST(LatticeHeight, PerRotorHeightsOverAnEdge) {
   for (std::size_t i = 0; i < 4; ++i) {
     const bool over_table = pose.p_W.x() + rotors[i].x() > 0.0;
     EXPECT_NEAR(h.rotor_height_m[i], over_table ? 0.3 : 0.6, 0.005) << "rotor " << i + 1;
+    // Against the floor under the centre, extended: the rotors over the table are 0.3 m nearer
+    // their surface, the others exactly on the plane.
+    if (over_table) {
+      EXPECT_NEAR(h.rotor_height_offset_m[i], -0.3, 0.005) << "rotor " << i + 1;
+    } else {
+      EXPECT_EQ(h.rotor_height_offset_m[i], 0.0) << "rotor " << i + 1;
+    }
     EXPECT_LT(h.rotor_support_distance_m[i], 0.05)
         << "rotor " << i + 1 << " is inside the footprint";
   }

@@ -75,8 +75,14 @@ TEST(ScenarioFile, ControllerRecommendedSelectsGeawaresConfiguration) {
   const auto problems = problemsOf(replaced(text, "controller: recommended", "controller: best"));
   ASSERT_FALSE(problems.empty());
   EXPECT_EQ(problems[0].key, "controller");
-  EXPECT_NE(problems[0].message.find("expected 'recommended' or a map"), std::string::npos)
+  EXPECT_NE(problems[0].message.find("expected 'recommended' or ACC:TORQUE"), std::string::npos)
       << problems[0].message;
+  // Any configuration --controller takes, switches included.
+  const FlightScenario r =
+      parseScenarioYaml(replaced(text, "controller: recommended", "controller: model:model_indi+rotors"),
+                        "s.yaml", sourceDir() / "config/scenarios");
+  EXPECT_EQ(geaware::control::configurationName(r.controller), "model:model_indi+rotors");
+  EXPECT_TRUE(r.controller.per_rotor_ground_effect);
 }
 
 TEST(ScenarioFile, CommittedExamplesLoad) {

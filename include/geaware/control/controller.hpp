@@ -71,6 +71,16 @@ struct ControllerInput {
   /// into throttle at this voltage. NaN (the default): not measured, the curve at its reference
   /// voltage, as before the input existed [V].
   double battery_voltage_V = std::numeric_limits<double>::quiet_NaN();
+  /// The ground's shape around the vehicle from the lattice ranger (estimation::LatticeHeight),
+  /// read only with per-rotor ground effect on (ControllerParams::per_rotor_ground_effect):
+  /// per rotor (mixer order), how much farther the surface beneath that rotor lies than the
+  /// ground plane under the rotor-plane centre, extended (LatticeHeight::rotor_height_offset_m:
+  /// 0 over one plane, +0.1 m for a rotor beyond a 10 cm table edge) [m], and the ground's
+  /// upward unit normal, world frame. Invalid, non-finite or implausible values keep the last
+  /// valid ones.
+  std::array<double, 4> rotor_height_offset_m{};
+  Eigen::Vector3d ground_normal_W = Eigen::Vector3d::UnitZ();
+  bool ground_shape_valid = false;  ///< false: no reading this tick
 };
 
 /// Conditions met during an update (bit flags).
@@ -121,6 +131,12 @@ struct ControllerOutput {
   double guard_min_accel_z_mps2 = -std::numeric_limits<double>::infinity();
   /// The height the position loop aimed at: the reference's, raised to the guard's floor [m].
   double z_cmd_m = 0.0;
+  /// Per-rotor ground effect (ControllerParams::per_rotor_ground_effect): the acceleration of
+  /// partial ground effect fed forward (subtracted), world frame [m/s²], and the torque the
+  /// model predicts from partial ground effect and the leveling toward a sloped ground's normal,
+  /// body frame (compensated) [N·m]. Zero when off.
+  Eigen::Vector3d a_ground_shape_W = Eigen::Vector3d::Zero();
+  Eigen::Vector3d tau_ground_shape_B = Eigen::Vector3d::Zero();
   std::uint32_t flags = kFlagNone;                               ///< ControllerFlag bits
 };
 
@@ -178,15 +194,19 @@ class Controller {
     Eigen::Vector3d a_int = Eigen::Vector3d::Zero();  ///< K^I·∫e_p [m/s²]
     Eigen::Vector3d a_dob = Eigen::Vector3d::Zero();  ///< low-passed DOB residual [m/s²]
     double a_z_min = -std::numeric_limits<double>::infinity();  ///< guard's bound [m/s²]
+    Eigen::Vector3d a_shape = Eigen::Vector3d::Zero();  ///< partial ground effect [m/s²]
   };
   /// The guarded reference, the position integral (with anti-windup) and the disturbance
   /// residual of this tick; advances their states.
   [[nodiscard]] Additions additions(const ControllerInput& in, double thrust_ref_N,
-                                    const Eigen::Matrix3d& R, std::uint32_t& flags) noexcept;
+                                    const Eigen::Matrix3d& R, const Eigen::Vector3d& a_shape_W,
+                                    std::uint32_t& flags) noexcept;
   /// The low-passed residual of the disturbance observer against the model's terms (F_G at the
   /// measured height with the reference thrust `thrust_ref_N`, drag at the estimated velocity).
+  /// The partial ground effect `a_shape_W` is part of the model (per-rotor ground effect on).
   [[nodiscard]] Eigen::Vector3d disturbanceResidual(const ControllerInput& in, double thrust_ref_N,
-                                                    const Eigen::Matrix3d& R) noexcept;
+                                                    const Eigen::Matrix3d& R,
+                                                    const Eigen::Vector3d& a_shape_W) noexcept;
   /// K^I·∫e_p after this tick's integration, held against the saturations of the last tick.
   [[nodiscard]] Eigen::Vector3d integralTerm(const Eigen::Vector3d& e_p,
                                              std::uint32_t& flags) noexcept;
@@ -197,6 +217,16 @@ class Controller {
                                                     const Measured& m, const Additions& x,
                                                     Eigen::Vector3d& a_des,
                                                     std::uint32_t& flags) const;
+  /// Per-rotor ground effect's terms at model height `h` with thrust `thrust_N` (zero when off):
+  /// the specific force of partial ground effect along z_B [m/s²] and the predicted external
+  /// torque, body frame [N·m]. Updates the held ground shape.
+  struct GroundShapeTerms {
+    Eigen::Vector3d a_W = Eigen::Vector3d::Zero();
+    Eigen::Vector3d tau_B = Eigen::Vector3d::Zero();
+  };
+  [[nodiscard]] GroundShapeTerms groundShapeTerms(const ControllerInput& in, double h,
+                                                  double thrust_N,
+                                                  const Eigen::Matrix3d& R) noexcept;
   /// The yaw torque to allocate: `tau_z` lagged against the rotors' J_R·ṅ lead.
   [[nodiscard]] double allocatedYawTorque(const ControllerInput& in, double tau_z) noexcept;
   /// The shared throttle PI correction T_E on the thrust-acceleration error.
@@ -221,6 +251,8 @@ class Controller {
   double min_rotor_plane_height_m_;
   /// Half the diagonal rotor distance: how far a landing foot can be from the centre [m].
   double arm_m_;
+  /// Rotor centres in the body frame, mixer order (model::Mixer::rotorPositions_B) [m].
+  std::array<Eigen::Vector3d, 4> rotors_B_;
   /// F_G learned in flight (with learning on; ground_effect_ and reference_map_ then hold F_G
   /// as a table on the learner's knots).
   std::optional<GroundEffectLearner> learner_;
@@ -232,6 +264,7 @@ class Controller {
     Memory(double cutoff_hz, double rate_hz, double height_m) noexcept
         : w_filter_(cutoff_hz, rate_hz), tau_hat_filter_(cutoff_hz, rate_hz),
           accel_filter_(cutoff_hz, rate_hz), thrust_vector_filter_(cutoff_hz, rate_hz),
+          ground_torque_filter_(cutoff_hz, rate_hz),
           last_height_m_(height_m) {}
     // Filters in step (one type, one cut-off): ω (differentiated for ω̇_f) with τ̂_B, and the
     // measured acceleration with the rotor-speed thrust vector for translational INDI.
@@ -239,6 +272,12 @@ class Controller {
     model::LowPass2<3> tau_hat_filter_;
     model::LowPass2<3> accel_filter_;
     model::LowPass2<3> thrust_vector_filter_;
+    // Per-rotor ground effect: the predicted ground torque through τ̂_B's filter (torque INDI
+    // feeds forward only what the filtered measurement does not hold yet), and the last valid
+    // ground shape.
+    model::LowPass2<3> ground_torque_filter_;
+    Eigen::Vector4d rotor_height_offset_m_ = Eigen::Vector4d::Zero();
+    Eigen::Vector3d ground_normal_W_ = Eigen::Vector3d::UnitZ();
     double thrust_acc_f_mps2_ = 0.0;  // |filtered thrust vector|, T_f/m [m/s²]
     Eigen::Vector3d last_w_f_ = Eigen::Vector3d::Zero();
     bool have_last_w_ = false;

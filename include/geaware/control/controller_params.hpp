@@ -116,6 +116,13 @@ struct ControllerParams {
   GroundEffectLearning learn_ground_effect = GroundEffectLearning::kOff;
   /// The learner's knots, forgetting, gates and bounds (with learning on).
   GroundEffectLearnerParams learner;
+  /// Per-rotor ground effect from the ranger's view of the ground (issue 13 item 1,
+  /// docs/controller.md "Per-rotor ground effect"): F_G at each rotor's own height, so the
+  /// extra lift and the torque of partial ground effect (some rotors over a table, others over
+  /// the void beyond its edge) are fed forward, and the leveling torque acts toward the measured
+  /// ground normal instead of the vertical. Acceleration `model` (the force) and torque `model` /
+  /// `model_indi` (the torque). Off unless the configuration name says "+rotors".
+  bool per_rotor_ground_effect = false;
 
   /// Whether any of geaware's additions is on.
   [[nodiscard]] bool hasAdditions() const noexcept;

@@ -98,6 +98,11 @@ struct LatticeHeight {
   /// ranger's footprint). Zero when per-rotor heights are off or the result is invalid.
   std::array<double, 4> rotor_height_m{};
   std::array<double, 4> rotor_support_distance_m{};
+  /// Per rotor: rotor_height_m less the rotor's vertical distance to the ground plane (the
+  /// surface under the rotor-plane centre) extended beneath it [m]. Exactly 0 where the same
+  /// surface lies under the rotor; +0.1 m for a rotor beyond the edge of a 10 cm table the
+  /// vehicle is over (partial ground effect).
+  std::array<double, 4> rotor_height_offset_m{};
 };
 
 class LatticeHeightEstimator {
