@@ -275,7 +275,8 @@ int runIdentify(const IdentifyOptions& opt) {
   for (const auto& w : r.blocking) std::cerr << "geaware: warning: " << w << "\n";
   if (!opt.out.empty() && !r.blocking.empty() && !opt.accept_warnings) {
     throw std::runtime_error("--out " + opt.out + " not written: " + std::to_string(r.blocking.size()) +
-                             " fitted value(s) outside their physical range or at a bound (warnings above); "
+                             " fitted value(s) outside their physical range, at a bound or not determined by "
+                             "the data (warnings above); "
                              "--accept-warnings writes it anyway");
   }
   if (!opt.out.empty()) {

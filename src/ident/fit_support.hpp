@@ -47,13 +47,25 @@ inline void warnIfManyOutliers(std::vector<std::string>& warnings, const std::st
 }
 
 /// The warnings of a fit of a curve over heights: each of `params` poorly constrained (the hint
-/// names the logged heights [h_min_m, h_max_m] and `advice`), and too many outliers (`what`).
-inline void warnCurveFit(std::vector<std::string>& warnings, const std::string& what,
+/// names the logged heights [h_min_m, h_max_m] and `advice`), and too many outliers (`what`). A
+/// parameter whose standard error is at least its value is not determined at all (the data
+/// cannot tell it from 0, nor its sign): that is a blocking warning (no --out without
+/// --accept-warnings), not a plain one.
+inline void warnCurveFit(std::vector<std::string>& warnings, std::vector<std::string>& blocking,
+                         const std::string& what,
                          std::initializer_list<std::pair<const char*, const Estimate*>> params,
                          double h_min_m, double h_max_m, const std::string& advice,
                          const FitStats& stats) {
   const std::string hint = "heights " + num(h_min_m) + "–" + num(h_max_m) + " m; " + advice;
-  for (const auto& [name, e] : params) warnIfImprecise(warnings, name, *e, hint);
+  for (const auto& [name, e] : params) {
+    if (std::abs(e->std_error) >= std::abs(e->value) || !std::isfinite(e->std_error)) {
+      blocking.push_back(what + ": " + name + " = " + num(e->value) + " ± " + num(e->std_error) +
+                         " is not determined by the data (its standard error is at least its "
+                         "value; " + hint + ")");
+    } else {
+      warnIfImprecise(warnings, name, *e, hint);
+    }
+  }
   warnIfManyOutliers(warnings, what, stats);
 }
 

@@ -36,7 +36,7 @@ AdditionalThrustFit fitHoverAdditionalThrust(const FlightLog& log, double mass_k
   }
   AdditionalThrustFit out = detail::fitThrustWithGroundEffect(
       S, log.h_m, f, {}, robust, log.source, "k_T, g1, g2 of F_G(h) = g2/(h² + g1) from the hover descent");
-  detail::warnCurveFit(out.warnings, "hover F_G fit",
+  detail::warnCurveFit(out.warnings, out.blocking, "hover F_G fit",
                        {{"k_T", &out.k_T_N_per_rpm2}, {"g1", &out.g1_m2}, {"g2", &out.g2_m2}},
                        out.h_min_m, out.h_max_m,
                        "descend from out of ground effect to the lowest height", out.stats);

@@ -195,7 +195,7 @@ LevelingFit fitLeveling(const PlatformLog& log, const LevelingInputs& in,
   out.stats = fit.stats;
   const double g3 = out.g3_m.value;
   out.peak_height_m = (-g3 + std::sqrt(g3 * g3 + 12.0 * out.g4_m2.value)) / 6.0;
-  detail::warnCurveFit(out.warnings, "leveling fit",
+  detail::warnCurveFit(out.warnings, out.blocking, "leveling fit",
                        {{"g3", &out.g3_m}, {"g4", &out.g4_m2}, {"scale", &out.scale_m4}},
                        out.h_min_m, out.h_max_m, "log heights on both sides of the torque's peak",
                        out.stats);

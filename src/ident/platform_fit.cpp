@@ -177,7 +177,7 @@ AdditionalThrustFit fitAdditionalThrust(const PlatformLog& log, const PlatformFi
   }
   AdditionalThrustFit out = detail::fitThrustWithGroundEffect(
       S, h, fz, w, fzRobust(log, options.robust), log.source, "k_T, g1, g2 (F_G(h) = g2/(h² + g1) on the level board)");
-  detail::warnCurveFit(out.warnings, "F_G fit", {{"g1", &out.g1_m2}, {"g2", &out.g2_m2}},
+  detail::warnCurveFit(out.warnings, out.blocking, "F_G fit", {{"g1", &out.g1_m2}, {"g2", &out.g2_m2}},
                        out.h_min_m, out.h_max_m,
                        "log heights from the lowest flyable to well out of ground effect", out.stats);
   return out;
