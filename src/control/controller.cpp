@@ -16,10 +16,6 @@ namespace {
 
 using model::kGravity;
 
-/// Height assumed before the first valid ranger reading: far enough that every ground-effect
-/// term has vanished (F_G(100 m) ≈ 7e-7), finite so the models stay finite.
-constexpr double kFarFromGroundM = 100.0;
-
 /// A reference body rate beyond the gyro's full scale (model/imu_limits.hpp) can be neither
 /// measured nor tracked: refused like a reference the flat map refuses.
 constexpr double kMaxRateRadps = model::kImuMaxRateRadps;
@@ -36,17 +32,10 @@ const ControllerParams& validated(const ControllerParams& p) {
 /// Which flat-map terms each configuration feeds forward.
 flatness::GroundEffectTerms referenceTerms(const ControllerParams& p) {
   const bool acc = p.acceleration == AccelerationCompensation::kModel;
-  const bool torque = p.torque == TorqueCompensation::kModel || p.torque == TorqueCompensation::kModelIndi;
+  const bool torque = detail::usesJPrime(p.torque);
   return {acc, acc, torque};
 }
 
-bool usesJPrime(TorqueCompensation t) {
-  return t == TorqueCompensation::kModel || t == TorqueCompensation::kModelIndi;
-}
-
-bool usesIncrementalTorque(TorqueCompensation t) {
-  return t == TorqueCompensation::kIndi || t == TorqueCompensation::kModelIndi;
-}
 
 /// Rotation with body z along `z_des` and body x perpendicular to the heading's y axis.
 Eigen::Matrix3d attitudeFrom(const Eigen::Vector3d& z_des, double yaw) {
@@ -91,7 +80,7 @@ Controller::Controller(const model::VehicleModel& vehicle, ControllerParams para
       min_rotor_plane_height_m_(vehicle.params().min_rotor_plane_height_m),
       arm_m_(0.5 * vehicle.params().diagonal_rotor_distance_m),
       rotors_B_(model::Mixer::rotorPositions_B(vehicle.params().diagonal_rotor_distance_m)),
-      mem_(params_.filter_cutoff_hz, params_.rate_hz, kFarFromGroundM) {
+      mem_(params_.filter_cutoff_hz, params_.rate_hz, detail::kFarFromGroundM) {
   if (params_.acceleration == AccelerationCompensation::kNeural && !residual_) {
     throw std::invalid_argument("acceleration compensation 'neural' needs a residual-force model");
   }
@@ -103,7 +92,7 @@ Controller::Controller(const model::VehicleModel& vehicle, ControllerParams para
 }
 
 void Controller::reset() noexcept {
-  mem_ = Memory(params_.filter_cutoff_hz, params_.rate_hz, kFarFromGroundM);
+  mem_ = Memory(params_.filter_cutoff_hz, params_.rate_hz, detail::kFarFromGroundM);
 }
 
 ControllerOutput Controller::fallback(std::uint32_t flags) const noexcept {
@@ -148,7 +137,7 @@ double Controller::modelHeight(const ControllerInput& in, std::uint32_t& flags) 
   // A height that is missing, non-finite or negative keeps the last valid one, and with it the
   // ground elevation under the vehicle, z_g = ẑ − h (the surface the ranger sees).
   if (in.height_valid && std::isfinite(in.height_m) && in.height_m >= 0.0) {
-    mem_.last_height_m_ = std::min(in.height_m, kFarFromGroundM);
+    mem_.last_height_m_ = std::min(in.height_m, detail::kFarFromGroundM);
     mem_.ground_z_m_ = in.estimate.p_W.z() - in.height_m;
     mem_.have_ground_ = true;
   } else {
@@ -160,7 +149,7 @@ double Controller::modelHeight(const ControllerInput& in, std::uint32_t& flags) 
   // cancels the position gain close to the ground (docs/controller.md).
   double h = mem_.last_height_m_;
   if (params_.ground_effect_height == GroundEffectHeight::kReference && mem_.have_ground_) {
-    h = std::clamp(in.reference.p_W.z() - mem_.ground_z_m_, 0.0, kFarFromGroundM);
+    h = std::clamp(in.reference.p_W.z() - mem_.ground_z_m_, 0.0, detail::kFarFromGroundM);
   }
   return h;
 }
@@ -351,76 +340,6 @@ Eigen::Vector3d Controller::thrustVectorCommand(const ControllerInput& in,
   return f_cmd;
 }
 
-Controller::GroundShapeTerms Controller::groundShapeTerms(const ControllerInput& in, double h,
-                                                          double thrust_N,
-                                                          const Eigen::Matrix3d& R) noexcept {
-  GroundShapeTerms g;
-  if (!params_.per_rotor_ground_effect) return g;
-  // The last valid shape is held, like the height: offsets finite and within the far-from-ground
-  // height, the normal a finite unit vector no steeper than 60°.
-  bool ok = in.ground_shape_valid && in.ground_normal_W.allFinite() &&
-            std::abs(in.ground_normal_W.norm() - 1.0) < 1e-3 && in.ground_normal_W.z() > 0.5;
-  for (double d : in.rotor_height_offset_m) ok = ok && std::isfinite(d) && std::abs(d) <= kFarFromGroundM;
-  if (ok) {
-    for (int i = 0; i < 4; ++i) mem_.rotor_height_offset_m_[i] = in.rotor_height_offset_m[static_cast<std::size_t>(i)];
-    mem_.ground_normal_W_ = in.ground_normal_W.normalized();
-  }
-  // Rotor i flies at h + δ_i above the surface beneath it: F_G(h + δ_i) of a quarter of the
-  // thrust, against F_G(h) for all four in the vehicle-level model (docs/controller.md).
-  const double f0 = ground_effect_.thrustRatio(h);
-  double df_sum = 0.0;
-  Eigen::Vector3d tau_B = Eigen::Vector3d::Zero();
-  for (std::size_t i = 0; i < 4; ++i) {
-    const double df = ground_effect_.thrustRatio(h + mem_.rotor_height_offset_m_[static_cast<int>(i)]) - f0;
-    df_sum += df;
-    // r_i × (0, 0, ΔT_i) = ΔT_i·(r_y, −r_x, 0), ΔT_i = T/4·ΔF_i.
-    tau_B += (0.25 * thrust_N * df) * Eigen::Vector3d(rotors_B_[i].y(), -rotors_B_[i].x(), 0.0);
-  }
-  const Eigen::Vector3d z_B = R.col(2);
-  if (params_.acceleration == AccelerationCompensation::kModel) {
-    g.a_W = (0.25 * df_sum * thrust_N / mass_kg_) * z_B;
-  }
-  if (usesJPrime(params_.torque)) {
-    // Leveling toward the ground's normal n: M_G·T·(z_B × n) (paper eq. 13 with n for z_W), of
-    // which J'(h) models the part M_G·T·(z_B × z_W); the rest is predicted here.
-    const Eigen::Vector3d extra_W =
-        ground_effect_.levelingCoefficient(h) * thrust_N * z_B.cross(mem_.ground_normal_W_ - Eigen::Vector3d::UnitZ());
-    g.tau_B = tau_B + R.transpose() * extra_W;
-  }
-  return g;
-}
-
-double Controller::allocatedYawTorque(const ControllerInput& in, double tau_z) noexcept {
-  // The rotors' yaw response to a steady-torque command is (1 + s·τ_R)/(1 + s·τ_motor): the
-  // J_R·ṅ lead. Lagging the command by 1/(1 + s·τ_R) (backward Euler) leaves the motor lag only.
-  if (!(params_.compensate_rotor_inertia && J_R_kgm2_ > 0.0)) return tau_z;
-  const double n_mean = std::max(in.rotor_speeds_rpm.mean(), throttle_curve_.minSpeedRpm());
-  const double tau_r = J_R_kgm2_ * model::kRpmToRadPerSec / (2.0 * k_I_Nm_per_rpm2_ * n_mean);
-  if (!mem_.have_yaw_lag_) {
-    mem_.yaw_torque_lagged_Nm_ = tau_z;
-    mem_.have_yaw_lag_ = true;
-  }
-  mem_.yaw_torque_lagged_Nm_ += dt_s_ / (tau_r + dt_s_) * (tau_z - mem_.yaw_torque_lagged_Nm_);
-  // Never beyond the largest yaw torque the rotors make (two at n_max, two at n_min; the
-  // allocation cuts any command beyond it): a 1e298 N·m command from a garbage reference kept the
-  // lag, and with it the yaw command, saturated for minutes.
-  const double n_max = throttle_curve_.maxSpeedRpm(), n_min = throttle_curve_.minSpeedRpm();
-  const double tau_z_max = 2.0 * k_I_Nm_per_rpm2_ * (n_max * n_max - n_min * n_min);
-  mem_.yaw_torque_lagged_Nm_ = std::clamp(mem_.yaw_torque_lagged_Nm_, -tau_z_max, tau_z_max);
-  return mem_.yaw_torque_lagged_Nm_;
-}
-
-double Controller::thrustCorrection(const Eigen::Vector4d& n_sq_des,
-                                    const Eigen::Vector4d& n_sq_meas) noexcept {
-  // T_a^E = (Σk_T·n_des² − Σk_T·n²)/m (docs/paper-facts.md).
-  const double thrust_acc_error = k_T_N_per_rpm2_ * (n_sq_des.sum() - n_sq_meas.sum()) / mass_kg_;
-  const double i_limit = params_.thrust_pi_ki > 0.0 ? params_.thrust_pi_limit / params_.thrust_pi_ki : 0.0;
-  mem_.thrust_pi_integral_ = std::clamp(mem_.thrust_pi_integral_ + thrust_acc_error * dt_s_, -i_limit, i_limit);
-  return std::clamp(params_.thrust_pi_kp * thrust_acc_error +
-                        params_.thrust_pi_ki * mem_.thrust_pi_integral_,
-                    -params_.thrust_pi_limit, params_.thrust_pi_limit);
-}
-
 ControllerOutput Controller::update(const ControllerInput& in) noexcept {
   // 0. Guard the inputs. Finite inputs can still be so large (1e300 m, 1e200 rpm) that the
   //    arithmetic overflows: a tick whose commands are not all finite is undone (filters,
@@ -483,10 +402,10 @@ ControllerOutput Controller::step(const ControllerInput& in) noexcept {
 
   // 4. Thrust and torque (paper eq. 33, 34).
   const double thrust = std::max(mass_kg_ * f_cmd.dot(R.col(2)), 0.0);
-  const Eigen::Vector3d J = usesJPrime(params_.torque) ? ground_effect_.levelingInertiaDiagonal(h)
+  const Eigen::Vector3d J = detail::usesJPrime(params_.torque) ? ground_effect_.levelingInertiaDiagonal(h)
                                                        : inertia_kgm2_;
   Eigen::Vector3d tau;
-  if (usesIncrementalTorque(params_.torque)) {
+  if (detail::usesIncrementalTorque(params_.torque)) {
     tau = m.tau_hat + J.cwiseProduct(w_dot_des - m.w_dot_f);
   } else {
     tau = J.cwiseProduct(w_dot_des) + w_des.cross(J.cwiseProduct(w_des));
@@ -497,7 +416,7 @@ ControllerOutput Controller::step(const ControllerInput& in) noexcept {
     // not hold yet (the prediction less its filtered self) is fed forward, so a steady torque
     // is not cancelled twice.
     const Eigen::Vector3d held = mem_.ground_torque_filter_.update(shape.tau_B);
-    tau -= usesIncrementalTorque(params_.torque) ? Eigen::Vector3d(shape.tau_B - held) : shape.tau_B;
+    tau -= detail::usesIncrementalTorque(params_.torque) ? Eigen::Vector3d(shape.tau_B - held) : shape.tau_B;
   }
 
   // 5. Rotor speeds and throttles: inverse throttle curve (at the measured battery voltage, when

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// Helpers shared by controller.cpp and controller_learning.cpp; not part of the public API.
+// Helpers shared by the controller's sources (controller*.cpp, controller_params.cpp); not part
+// of the public API.
 
 #include <vector>
 
@@ -8,6 +9,20 @@
 #include "geaware/model/vehicle_model.hpp"
 
 namespace geaware::control::detail {
+
+/// Height assumed before the first valid ranger reading: far enough that every ground-effect
+/// term has vanished (F_G(100 m) ≈ 7e-7), finite so the models stay finite [m].
+inline constexpr double kFarFromGroundM = 100.0;
+
+/// Whether the torque side uses the model's J'(h) (torque `model`, `model_indi`).
+[[nodiscard]] inline bool usesJPrime(TorqueCompensation t) noexcept {
+  return t == TorqueCompensation::kModel || t == TorqueCompensation::kModelIndi;
+}
+
+/// Whether the torque side is incremental, on the measured τ̂_B (torque `indi`, `model_indi`).
+[[nodiscard]] inline bool usesIncrementalTorque(TorqueCompensation t) noexcept {
+  return t == TorqueCompensation::kIndi || t == TorqueCompensation::kModelIndi;
+}
 
 /// Whether F_G is learned in flight ("+learn", "+learn0").
 [[nodiscard]] inline bool learning(const ControllerParams& p) noexcept {

@@ -1,12 +1,46 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The controller's motor side after the control law (docs/controller.md §4, docs/reliability.md
-// §7): the per-rotor speed loop and the motor-failure monitor with its flight termination.
+// §7): the yaw torque's rotor-inertia lag, the shared throttle PI correction, the per-rotor speed
+// loop and the motor-failure monitor with its flight termination.
 #include "geaware/control/controller.hpp"
+#include "geaware/model/units.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 namespace geaware::control {
+
+double Controller::allocatedYawTorque(const ControllerInput& in, double tau_z) noexcept {
+  // The rotors' yaw response to a steady-torque command is (1 + s·τ_R)/(1 + s·τ_motor): the
+  // J_R·ṅ lead. Lagging the command by 1/(1 + s·τ_R) (backward Euler) leaves the motor lag only.
+  if (!(params_.compensate_rotor_inertia && J_R_kgm2_ > 0.0)) return tau_z;
+  const double n_mean = std::max(in.rotor_speeds_rpm.mean(), throttle_curve_.minSpeedRpm());
+  const double tau_r = J_R_kgm2_ * model::kRpmToRadPerSec / (2.0 * k_I_Nm_per_rpm2_ * n_mean);
+  if (!mem_.have_yaw_lag_) {
+    mem_.yaw_torque_lagged_Nm_ = tau_z;
+    mem_.have_yaw_lag_ = true;
+  }
+  mem_.yaw_torque_lagged_Nm_ += dt_s_ / (tau_r + dt_s_) * (tau_z - mem_.yaw_torque_lagged_Nm_);
+  // Never beyond the largest yaw torque the rotors make (two at n_max, two at n_min; the
+  // allocation cuts any command beyond it): a 1e298 N·m command from a garbage reference kept the
+  // lag, and with it the yaw command, saturated for minutes.
+  const double n_max = throttle_curve_.maxSpeedRpm(), n_min = throttle_curve_.minSpeedRpm();
+  const double tau_z_max = 2.0 * k_I_Nm_per_rpm2_ * (n_max * n_max - n_min * n_min);
+  mem_.yaw_torque_lagged_Nm_ = std::clamp(mem_.yaw_torque_lagged_Nm_, -tau_z_max, tau_z_max);
+  return mem_.yaw_torque_lagged_Nm_;
+}
+
+double Controller::thrustCorrection(const Eigen::Vector4d& n_sq_des,
+                                    const Eigen::Vector4d& n_sq_meas) noexcept {
+  // T_a^E = (Σk_T·n_des² − Σk_T·n²)/m (docs/paper-facts.md).
+  const double thrust_acc_error = k_T_N_per_rpm2_ * (n_sq_des.sum() - n_sq_meas.sum()) / mass_kg_;
+  const double i_limit = params_.thrust_pi_ki > 0.0 ? params_.thrust_pi_limit / params_.thrust_pi_ki : 0.0;
+  mem_.thrust_pi_integral_ = std::clamp(mem_.thrust_pi_integral_ + thrust_acc_error * dt_s_, -i_limit, i_limit);
+  return std::clamp(params_.thrust_pi_kp * thrust_acc_error +
+                        params_.thrust_pi_ki * mem_.thrust_pi_integral_,
+                    -params_.thrust_pi_limit, params_.thrust_pi_limit);
+}
 
 Eigen::Vector4d Controller::rotorSpeedCorrection(const ControllerInput& in) noexcept {
   if (!(params_.rotor_speed_ki_per_s > 0.0)) return Eigen::Vector4d::Zero();

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "controller_internal.hpp"
 #include "geaware/model/field_check.hpp"
 
 namespace geaware::control {
@@ -94,7 +95,7 @@ void validateAdditions(const ControllerParams& p, model::FieldChecker& c) {
     for (auto& e : p.learner.validate()) c.fail("learner." + e.field, e.value, e.expected);
   }
   if (p.per_rotor_ground_effect && p.acceleration != AccelerationCompensation::kModel &&
-      p.torque != TorqueCompensation::kModel && p.torque != TorqueCompensation::kModelIndi) {
+      !detail::usesJPrime(p.torque)) {
     c.fail("per_rotor_ground_effect", "on",
            std::string("off with '") + toString(p.acceleration) + ":" + toString(p.torque) +
                "': the per-rotor terms feed the model's force (acceleration 'model') and torque "
