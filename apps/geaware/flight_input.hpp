@@ -16,10 +16,13 @@ namespace geaware::cli {
 /// observer with base's mass and k_T), or, with `map` empty, a CSV in identify flight's format;
 /// `columns` and `constants` are the --column NAME=EXPR and --const NAME=VALUE definitions (a
 /// bad one is a UsageError before the log is read). Screened (dead or alternating rotor
-/// channels refused, rows at 0 rpm dropped), the notes printed to stderr.
+/// channels refused, rows at 0 rpm dropped), the notes printed to stderr. `vehicle_file` is the
+/// file `base` came from (empty: the built-in vehicle, whose throttle curve a log with throttles
+/// and no rotor speeds may not use).
 [[nodiscard]] ident::FlightLog readFlightInput(const std::string& log, const std::string& map,
                                                const std::vector<std::string>& columns,
                                                const std::vector<std::string>& constants,
-                                               const model::VehicleParams& base);
+                                               const model::VehicleParams& base,
+                                               const std::string& vehicle_file);
 
 }  // namespace geaware::cli

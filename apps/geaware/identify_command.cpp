@@ -48,6 +48,7 @@ struct IdentifyOptions {
   double table_top_m = 0.5;             ///< automatic F_G knots up to this height [m]
   std::string table_heights;            ///< explicit knots FROM:TO:STEP (empty: automatic)
   std::string map;                      ///< log map (built-in name or file) for autopilot logs
+  std::string rotor_speed = "auto";     ///< with --map: rpm (logged), throttle (through the curve), auto
   std::string voltage_column;           ///< rotor: the battery-voltage column (empty: none)
   double reference_voltage_V = 0.0;     ///< rotor: the curve's reference voltage (0: median) [V]
   double mass_kg = 0.0;                 ///< vehicle mass [kg]; 0: the base vehicle's
@@ -76,6 +77,16 @@ ident::ColumnDefinitions columnDefinitions(const IdentifyOptions& opt) {
 
 /// A flight log read from an autopilot log (ULog, DataFlash, CSV export) through a log map:
 /// the mapped channels on one time axis in ENU/FLU, a_ext computed by the paper's observer.
+/// Whether a mapped flight's rotor speeds come from the log's rotor speeds ("rpm") or its
+/// throttles ("throttle"): --rotor-speed, or with auto the map's rotor_speed when the log has it,
+/// else its throttle when the log has that. Throws std::runtime_error naming what is missing.
+std::string rotorSpeedSource(const IdentifyOptions& opt, const io::LogData& data, const io::LogMap& map) {
+  if (opt.rotor_speed != "auto") return opt.rotor_speed;
+  if (io::logHasChannel(data, map, "rotor_speed")) return "rpm";
+  if (io::logHasChannel(data, map, "throttle")) return "throttle";
+  return "rpm";  // mapFlight then names the rotor_speed fields the log lacks
+}
+
 ident::FlightLog readMappedFlight(const IdentifyOptions& opt, const model::VehicleParams& base,
                                   std::vector<std::string>& notes) {
   io::LogMap map = io::loadLogMap(opt.map);
@@ -84,13 +95,15 @@ ident::FlightLog readMappedFlight(const IdentifyOptions& opt, const model::Vehic
   } catch (const io::ExpressionError& e) {
     throw UsageError(e.what());
   }
-  std::vector<std::string> wanted = {"height", "specific_force", "attitude", "rotor_speed"};
+  std::vector<std::string> wanted = {"height", "specific_force", "attitude"};
   if (!opt.hover) wanted.emplace_back("velocity");
+  std::vector<std::string> asked = wanted;
+  for (const char* c : {"rotor_speed", "throttle", "battery_voltage"}) asked.emplace_back(c);
   // Only the mapped topics are decoded, unless a channel names none (its fields are looked up
   // in every topic) or --column/--const may name any.
   io::LogReadOptions read;
   bool every_topic = !opt.columns.empty() || !opt.constants.empty();
-  for (const auto& w : wanted) {
+  for (const auto& w : asked) {
     if (const auto it = map.channels.find(w); it != map.channels.end()) {
       read.topics.push_back(it->second.topic);
       every_topic = every_topic || it->second.topic.empty();
@@ -99,7 +112,28 @@ ident::FlightLog readMappedFlight(const IdentifyOptions& opt, const model::Vehic
   if (every_topic) read.topics.clear();
   const io::LogData data = io::readLog(opt.log, read);
   for (const auto& w : data.warnings) std::cerr << "geaware: warning: " << opt.log << ": " << w << "\n";
-  const io::MappedFlight mapped = io::mapFlight(data, map, wanted);
+  const std::string source = rotorSpeedSource(opt, data, map);
+  if (source == "throttle") {
+    // The built-in quadrotor's curve is another ESC's and motor's: refused, as its mass is.
+    if (opt.vehicle.empty()) {
+      throw UsageError(opt.log + ": rotor speeds from throttles need the vehicle's throttle curve: --vehicle FILE "
+                       "with throttle_curve (`identify rotor` fits it from a stand log with throttle and voltage "
+                       "columns; the built-in paper quadrotor's curve is not taken for another vehicle)");
+    }
+    wanted.emplace_back("throttle");
+    // With the voltage when the map has it: the curve uses it, or the conversion warns that
+    // the curve cannot (io::mapFlight leaves out an optional channel the log lacks).
+    if (map.channels.count("battery_voltage") > 0) wanted.emplace_back("battery_voltage");
+  } else {
+    wanted.emplace_back("rotor_speed");
+  }
+  io::MappedFlight mapped = io::mapFlight(data, map, wanted);
+  std::vector<std::string> warnings = mapped.warnings;
+  if (source == "throttle") {
+    const ident::ThrottleConversion conversion = ident::rotorSpeedsFromThrottle(mapped, base.throttle);
+    mapped.notes.insert(mapped.notes.end(), conversion.notes.begin(), conversion.notes.end());
+    warnings.insert(warnings.end(), conversion.warnings.begin(), conversion.warnings.end());
+  }
   ident::MappedFlightLog flight = ident::flightLogFromMapped(mapped, base.mass_kg, base.rotor.k_T_N_per_rpm2);
   ident::FlightColumns names;
   for (std::size_t k = 0; k < names.n.size() && k < mapped.rotor_fields.size(); ++k) {
@@ -109,9 +143,10 @@ ident::FlightLog readMappedFlight(const IdentifyOptions& opt, const model::Vehic
   notes = ident::screenFlight(flight.log, names);
   for (const auto& n : mapped.notes) std::cerr << "geaware: note: " << opt.log << ": " << n << "\n";
   for (const auto& n : flight.notes) std::cerr << "geaware: note: " << opt.log << ": " << n << "\n";
-  for (const auto& w : mapped.warnings) std::cerr << "geaware: warning: " << opt.log << ": " << w << "\n";
+  for (const auto& w : warnings) std::cerr << "geaware: warning: " << opt.log << ": " << w << "\n";
   std::cerr << "geaware: note: " << opt.log << ": " << flight.log.size() << " samples for the fit, a_ext from the IMU, "
-            << "attitude and rotor speeds with m = " << base.mass_kg << " kg\n";
+            << "attitude and rotor speeds" << (source == "throttle" ? " (from throttles)" : "") << " with m = "
+            << base.mass_kg << " kg\n";
   return std::move(flight.log);
 }
 
@@ -256,6 +291,13 @@ int runIdentify(const IdentifyOptions& opt) {
     throw UsageError("--map: a flight fit on an autopilot log needs the vehicle's mass: --mass-kg M or --vehicle FILE "
                      "(the built-in paper quadrotor's mass is not taken for another vehicle)");
   }
+  if (opt.rotor_speed != "auto" && opt.map.empty()) {
+    throw UsageError("--rotor-speed: chooses between a log map's rotor_speed and throttle channels; give --map");
+  }
+  if (opt.rotor_speed == "throttle" && opt.vehicle.empty()) {
+    throw UsageError("--rotor-speed throttle: rotor speeds from throttles need the vehicle's throttle curve: --vehicle "
+                     "FILE (the built-in paper quadrotor's curve is not taken for another vehicle)");
+  }
   if (opt.kind == "flight" && opt.vehicle.empty() && opt.mass_kg == 0.0) {
     throw UsageError("identify flight: a flight fit needs the vehicle's mass: --vehicle FILE or --mass-kg M (the "
                      "built-in paper quadrotor's 1.696 kg is not taken for another vehicle)");
@@ -298,11 +340,13 @@ int runIdentify(const IdentifyOptions& opt) {
 }  // namespace
 
 ident::FlightLog readFlightInput(const std::string& log, const std::string& map, const std::vector<std::string>& columns,
-                                 const std::vector<std::string>& constants, const model::VehicleParams& base) {
+                                 const std::vector<std::string>& constants, const model::VehicleParams& base,
+                                 const std::string& vehicle_file) {
   IdentifyOptions opt;
   opt.kind = "flight";
   opt.log = log;
   opt.map = map;
+  opt.vehicle = vehicle_file;
   opt.columns = columns;
   opt.constants = constants;
   std::vector<std::string> notes;
@@ -394,6 +438,12 @@ Runner addIdentifyCommand(CLI::App& app) {
                       "name (px4, ardupilot, crazyflie) or a map file (docs/identification.md, \"Mapping a log\")");
       sub->add_option("--mass-kg", opts->mass_kg, "the vehicle's mass [kg] (instead of the base vehicle's)")
           ->check(finiteIn(0.0, 1000.0, true));
+      sub->add_option("--rotor-speed", opts->rotor_speed,
+                      "with --map: the rotor speeds from the log's rotor_speed channel (rpm), from its throttle "
+                      "channel through the --vehicle file's throttle curve and the battery voltage (throttle: "
+                      "vehicles without rotor-speed telemetry), or auto: rpm when the log has it")
+          ->check(CLI::IsMember({"auto", "rpm", "throttle"}))
+          ->capture_default_str();
     }
     sub->callback([opts, name = name] { opts->kind = name; });
   }

@@ -48,7 +48,7 @@ neural::TrainingSet rows(const std::vector<std::string>& logs, const TrainOption
                          const model::VehicleParams& base, io::Json& per_log) {
   neural::TrainingSet set;
   for (const auto& log : logs) {
-    const ident::FlightLog flight = readFlightInput(log, o.map, o.columns, o.constants, base);
+    const ident::FlightLog flight = readFlightInput(log, o.map, o.columns, o.constants, base, o.vehicle);
     const std::size_t added = experiments::addLogRows(set, flight, base);
     std::cerr << "geaware: note: " << log << ": " << added << " rows of " << flight.size() << " samples\n";
     per_log.push_back({{"log", log}, {"rows", added}, {"samples", flight.size()}});

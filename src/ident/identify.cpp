@@ -131,6 +131,27 @@ IdentifyResult identifyRotorStand(const RotorStandLog& log, const IdentifyOption
 namespace {
 
 /// A hover that never came within kHoverGroundEffectRadii rotor radii of the ground: k_T alone.
+/// Fewer samples out of ground effect than this do not give k_T alone in place of a failed F_G fit.
+constexpr std::size_t kMinHoverKTSamples = 10;
+
+/// The rows of `log` whose height is at least `h_m`.
+FlightLog rowsAtOrAbove(const FlightLog& log, double h_m) {
+  FlightLog out;
+  out.source = log.source;
+  out.first_data_line = log.first_data_line;
+  const auto copy = [](const std::vector<double>& from, std::vector<double>& to, std::size_t i) {
+    if (i < from.size()) to.push_back(from[i]);
+  };
+  for (std::size_t i = 0; i < log.size(); ++i) {
+    if (!(log.h_m[i] >= h_m)) continue;
+    copy(log.t_s, out.t_s, i);
+    copy(log.h_m, out.h_m, i);
+    for (std::size_t k = 0; k < 3; ++k) copy(log.v_W[k], out.v_W[k], i), copy(log.a_ext_W[k], out.a_ext_W[k], i);
+    for (std::size_t k = 0; k < 4; ++k) copy(log.q_WB[k], out.q_WB[k], i), copy(log.n_rpm[k], out.n_rpm[k], i);
+  }
+  return out;
+}
+
 IdentifyResult hoverKTAlone(const FlightLog& log, const model::VehicleParams& base,
                             const IdentifyOptions& options, double reach_m) {
   const HoverThrustFit fit = fitHoverThrustOutOfGroundEffect(log, base.mass_kg, base.rotor.k_T_N_per_rpm2,
@@ -166,8 +187,22 @@ IdentifyResult identifyHover(const FlightLog& log, const model::VehicleParams& b
   if (!log.h_m.empty() && *std::min_element(log.h_m.begin(), log.h_m.end()) >= reach_m) {
     return hoverKTAlone(log, base, options, reach_m);
   }
-  const AdditionalThrustFit fit =
-      fitHoverAdditionalThrust(log, base.mass_kg, base.rotor.k_T_N_per_rpm2, options.robust);
+  AdditionalThrustFit fit;
+  try {
+    fit = fitHoverAdditionalThrust(log, base.mass_kg, base.rotor.k_T_N_per_rpm2, options.robust);
+  } catch (const IdentError& e) {
+    // Too few or too collinear samples near the ground (a take-off and a landing logged at a few
+    // Hz): k_T alone from the samples out of ground effect, and said so; with none, the error.
+    const FlightLog high = rowsAtOrAbove(log, reach_m);
+    if (high.size() < kMinHoverKTSamples) throw;
+    IdentifyResult r = hoverKTAlone(high, base, options, reach_m);
+    r.notes.clear();
+    r.warnings.push_back(fmt::format(
+        "F_G not fitted: {} ({} of {} samples below {:g} rotor radii, {:.4g} m); k_T alone from the {} samples at "
+        "or above that height, with F_G taken as 0 there",
+        e.what(), log.size() - high.size(), log.size(), kHoverGroundEffectRadii, reach_m, high.size()));
+    return r;
+  }
   IdentifyResult r;
   r.kind = "hover";
   r.parameters = {{"rotor.k_T_N_per_rpm2", fit.k_T_N_per_rpm2, "N/rpm²"},

@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // A flight log from a mapped autopilot log, a_ext by the paper's observer (ident/rig_logs.hpp).
 
+#include <algorithm>
+#include <cstdio>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -8,6 +11,7 @@
 
 #include "geaware/ident/rig_logs.hpp"
 #include "geaware/io/log_map.hpp"
+#include "geaware/model/motor.hpp"
 
 namespace geaware::ident {
 
@@ -27,18 +31,63 @@ MappedFlightLog flightLogFromMapped(const io::MappedFlight& flight, double mass_
   MappedFlightLog out;
   FlightLog& log = out.log;
   log.source = flight.source + " (mapped, time base " + flight.time_base + ")";
-  std::size_t resting = 0;
+  // Per row: Σn², and whether the ground holds the vehicle up: every rotor stopped, or m·f_z/Σn²
+  // (the IMU's vertical specific force per unit of Σn²: k_T·(1 + F_G) in a hover) more than twice
+  // its value in flight, the lower quartile over the rows with rotors turning (those of a log
+  // that is at least a quarter airborne). No ground effect a vehicle can fly in doubles its
+  // thrust (the paper's platform measures F_G = 0.32 at its lowest height), and the ratio needs
+  // no k_T: a vehicle file's may be off.
+  std::vector<double> S(n, 0.0);
+  std::vector<double> ratio(n, 0.0);
+  std::vector<Eigen::Matrix3d> R(n);
+  std::vector<double> turning;
+  std::size_t stopped = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    double S = 0.0;
-    for (const auto& r : flight.n_rpm) S += r[i] * r[i];
-    if (S == 0.0) {
-      ++resting;
+    for (const auto& r : flight.n_rpm) S[i] += r[i] * r[i];
+    const Eigen::Quaterniond q(flight.q_WB[0][i], flight.q_WB[1][i], flight.q_WB[2][i], flight.q_WB[3][i]);
+    R[i] = q.normalized().toRotationMatrix();
+    const Eigen::Vector3d f(flight.f_B_mps2[0][i], flight.f_B_mps2[1][i], flight.f_B_mps2[2][i]);
+    if (S[i] == 0.0) {
+      ++stopped;
       continue;
     }
-    const Eigen::Quaterniond q(flight.q_WB[0][i], flight.q_WB[1][i], flight.q_WB[2][i], flight.q_WB[3][i]);
-    const Eigen::Matrix3d R = q.normalized().toRotationMatrix();
+    ratio[i] = mass_kg * (R[i] * f).z() / S[i];
+    turning.push_back(ratio[i]);
+  }
+  double in_flight = std::numeric_limits<double>::infinity();
+  if (!turning.empty()) {
+    const auto q1 = turning.begin() + static_cast<std::ptrdiff_t>(turning.size() / 4);
+    std::nth_element(turning.begin(), q1, turning.end());
+    in_flight = *q1;
+  }
+  std::vector<char> supported(n, 0);
+  std::vector<double> resting_heights;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (S[i] == 0.0 || (in_flight > 0.0 && ratio[i] > 2.0 * in_flight)) {
+      supported[i] = 1;
+      resting_heights.push_back(flight.h_m[i]);
+    }
+  }
+  // The height the vehicle rests at: the median over those rows, when they last kMinRestingS in
+  // all (a few rows before the first rotor-speed sample of a log that starts in the air do not
+  // make a resting height); within kGroundContactMarginM of it, rotors turning fast enough to fly
+  // still stand on the ground (spinning up to take off).
+  double h_rest_m = -std::numeric_limits<double>::infinity();
+  const double dt_s = n > 1 ? (flight.t_s.back() - flight.t_s.front()) / static_cast<double>(n - 1) : 0.0;
+  if (static_cast<double>(resting_heights.size()) * dt_s >= kMinRestingS) {
+    const auto mid = resting_heights.begin() + static_cast<std::ptrdiff_t>(resting_heights.size() / 2);
+    std::nth_element(resting_heights.begin(), mid, resting_heights.end());
+    h_rest_m = *mid;
+  }
+  std::size_t standing = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (S[i] == 0.0) continue;
+    if (supported[i] != 0 || flight.h_m[i] <= h_rest_m + kGroundContactMarginM) {
+      ++standing;
+      continue;
+    }
     const Eigen::Vector3d f(flight.f_B_mps2[0][i], flight.f_B_mps2[1][i], flight.f_B_mps2[2][i]);
-    const Eigen::Vector3d a_ext = R * f - R.col(2) * (k_T_N_per_rpm2 * S / mass_kg);
+    const Eigen::Vector3d a_ext = R[i] * f - R[i].col(2) * (k_T_N_per_rpm2 * S[i] / mass_kg);
     log.t_s.push_back(flight.t_s[i]);
     log.h_m.push_back(flight.h_m[i]);
     for (std::size_t k = 0; k < 3; ++k) {
@@ -50,9 +99,69 @@ MappedFlightLog flightLogFromMapped(const io::MappedFlight& flight, double mass_
       log.n_rpm[k].push_back(flight.n_rpm[k][i]);
     }
   }
-  if (resting > 0) {
-    out.notes.push_back(std::to_string(resting) + " of " + std::to_string(n) +
+  if (stopped > 0) {
+    out.notes.push_back(std::to_string(stopped) + " of " + std::to_string(n) +
                         " samples with every rotor at 0 rpm (on the ground or disarmed): dropped");
+  }
+  if (standing > 0) {
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  " samples standing on the ground (rotors turning at or within %.0f cm of the resting height "
+                  "%.3f m, or the IMU's vertical specific force per sum(n^2) over twice its value in flight): dropped",
+                  kGroundContactMarginM * 100.0, h_rest_m);
+    out.notes.push_back(std::to_string(standing) + " of " + std::to_string(n) + text);
+  }
+  return out;
+}
+
+ThrottleConversion rotorSpeedsFromThrottle(io::MappedFlight& flight, const model::ThrottleCurveParams& curve) {
+  const std::size_t n = flight.size();
+  if (flight.throttle.empty() || flight.throttle[0].size() != n) {
+    throw std::invalid_argument(flight.source + ": the mapped log has no throttles");
+  }
+  if (!(curve.c2_rpm2 != 0.0 || curve.c1_rpm2 != 0.0 || curve.c0_rpm2 != 0.0)) {
+    throw std::invalid_argument(flight.source + ": the vehicle has no throttle curve (c2, c1 and c0 are 0)");
+  }
+  const model::ThrottleCurve speed(curve);
+  const bool with_voltage = curve.reference_voltage_V > 0.0 && flight.vbat_V.size() == n;
+  ThrottleConversion out;
+  std::size_t above = 0, stopped = 0;
+  flight.n_rpm.assign(flight.throttle.size(), std::vector<double>(n, 0.0));
+  for (std::size_t r = 0; r < flight.throttle.size(); ++r) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const double t = flight.throttle[r][i];
+      if (!(t >= 0.0)) {  // io::kStoppedThrottle
+        ++stopped;
+        continue;
+      }
+      above += t > 1.0 ? 1 : 0;
+      flight.n_rpm[r][i] = speed.speedRpm(std::min(t, 1.0), with_voltage ? flight.vbat_V[i] : kNaN);
+    }
+  }
+  flight.rotor_fields.clear();
+  for (const auto& f : flight.throttle_fields) flight.rotor_fields.push_back("throttle " + f);
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "rotor speeds from the throttles through the vehicle's throttle curve n^2 = %g t^2 + %g t + %g rpm^2",
+                curve.c2_rpm2, curve.c1_rpm2, curve.c0_rpm2);
+  std::string note = text;
+  if (with_voltage) {
+    std::snprintf(text, sizeof text, ", times (V/%g V)^%g with the logged battery voltage", curve.reference_voltage_V,
+                  curve.voltage_exponent);
+    note += text;
+  }
+  out.notes.push_back(note + "; " + std::to_string(stopped) + " of " +
+                      std::to_string(n * flight.throttle.size()) + " values are a stopped motor");
+  if (curve.reference_voltage_V > 0.0 && !with_voltage) {
+    out.warnings.push_back("the vehicle's throttle curve depends on the battery voltage, but the log has none: the "
+                           "curve is taken at its reference voltage, so a sagging battery reads as lost lift");
+  } else if (!(curve.reference_voltage_V > 0.0) && flight.vbat_V.size() == n) {
+    out.warnings.push_back("the log has the battery voltage but the vehicle's throttle curve has no voltage "
+                           "dependence (throttle_curve.reference_voltage_V = 0; `identify rotor` with a voltage column "
+                           "fits it): a sagging battery reads as lost lift");
+  }
+  if (above > 0) {
+    out.warnings.push_back(std::to_string(above) + " throttle values above 1 taken as 1 (the map's range may be wrong)");
   }
   return out;
 }

@@ -316,7 +316,10 @@ struct CsvReader::Impl {
     const CsvColumn& col = options.columns[k];
     const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r'; };
     if (cell.empty() || blank(cell.front()) || blank(cell.back())) cell = detail::trimBlanks(cell);
-    if (cell.empty()) fail(line_no, col.name, "empty cell, expected a number");
+    if (cell.empty()) {
+      if (col.non_finite) return std::numeric_limits<double>::quiet_NaN();
+      fail(line_no, col.name, "empty cell, expected a number");
+    }
     const char* first = cell.data();
     const char* last = cell.data() + cell.size();
     if (*first == '+') ++first;
@@ -329,7 +332,10 @@ struct CsvReader::Impl {
     if (ec != std::errc() || ptr != last) {
       fail(line_no, col.name, "expected a number, got '" + detail::excerpt(cell) + "'");
     }
-    if (!std::isfinite(v)) fail(line_no, col.name, "'" + detail::excerpt(cell) + "' is not finite");
+    if (!std::isfinite(v)) {
+      if (col.non_finite) return v;
+      fail(line_no, col.name, "'" + detail::excerpt(cell) + "' is not finite");
+    }
     return checkRange(v, cell, col);
   }
 

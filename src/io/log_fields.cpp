@@ -139,7 +139,9 @@ std::vector<std::string> mappedColumnNames() {
   return {"h_m",          "a_x_mps2", "a_y_mps2", "a_z_mps2", "gyro_x_radps", "gyro_y_radps",
           "gyro_z_radps", "qw",       "qx",       "qy",       "qz",           "vx_mps",
           "vy_mps",       "vz_mps",   "n1_rpm",   "n2_rpm",   "n3_rpm",       "n4_rpm",
-          "n5_rpm",       "n6_rpm",   "n7_rpm",   "n8_rpm",   "vbat_V"};
+          "n5_rpm",       "n6_rpm",   "n7_rpm",   "n8_rpm",   "throttle1",    "throttle2",
+          "throttle3",    "throttle4", "throttle5", "throttle6", "throttle7",   "throttle8",
+          "vbat_V"};
 }
 
 namespace {
@@ -159,6 +161,8 @@ Slot slotOf(const std::string& name) {
       {"velocity", {"vx_mps", "vy_mps", "vz_mps"}},
       {"rotor_speed",
        {"n1_rpm", "n2_rpm", "n3_rpm", "n4_rpm", "n5_rpm", "n6_rpm", "n7_rpm", "n8_rpm"}},
+      {"throttle",
+       {"throttle1", "throttle2", "throttle3", "throttle4", "throttle5", "throttle6", "throttle7", "throttle8"}},
       {"battery_voltage", {"vbat_V"}}};
   for (const auto& [channel, names] : channels) {
     const auto it = std::find(names.begin(), names.end(), name);

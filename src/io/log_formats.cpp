@@ -61,6 +61,10 @@ LogData readCsvLog(const std::filesystem::path& file) {
     const double s = timeScale(trimmedCopy(bare), units[i]);
     if (s > 0.0 && time_column == names.size()) time_column = i, scale = s;
   }
+  // A column may hold NaN, ±inf or gaps (an export that merges topics logged at different rates,
+  // a flight log's unbounded limit): mapFlight drops the rows where a field it uses has one, and
+  // counts them; `logs inspect` shows them in the channel's health.
+  for (std::size_t i = 0; i < o.columns.size(); ++i) o.columns[i].non_finite = i != time_column;
   if (time_column < names.size()) o.time_column = names[time_column];
   const CsvTable table = readCsv(file, o);
   LogData log;

@@ -29,6 +29,7 @@ const std::vector<ChannelSpec>& channelSpecs() {
       {"attitude", 3, 4, {"quaternion", "euler"}, {}},
       {"velocity", 3, 3, {"world"}, {{"m/s", 1.0}, {"mm/s", 1e-3}, {"cm/s", 1e-2}}},
       {"rotor_speed", 1, 8, {"scalar"}, {{"rpm", 1.0}, {"rad/s", 9.549296585513721}}},
+      {"throttle", 1, 8, {"scalar"}, {}},  // scaled by its range, not by a unit
       {"battery_voltage", 1, 1, {"scalar"}, {{"V", 1.0}, {"mV", 1e-3}}},
   };
   return specs;
@@ -40,7 +41,7 @@ std::string joined(const std::vector<std::string>& v) {
   return s;
 }
 
-// Motor order and pole pairs of a rotor_speed channel (io/log_map.hpp, MappedChannel).
+// Motor order of a rotor_speed or throttle channel (io/log_map.hpp, MappedChannel).
 void readMotors(MapReader& r, MappedChannel& c) {
   const std::size_t n = c.fields.size();
   if (r.has("motor_of_field")) {
@@ -62,7 +63,23 @@ void readMotors(MapReader& r, MappedChannel& c) {
       c.rotor_of_motor.push_back(static_cast<unsigned>(v));
     }
   }
-  if (r.has("pole_pairs")) c.pole_pairs = static_cast<double>(r.integer("pole_pairs", 1, 100));
+}
+
+// The raw range of a throttle channel and how a NaN reads (io/log_map.hpp, MappedChannel).
+void readThrottle(MapReader& r, MappedChannel& c) {
+  if (r.has("range")) {
+    const std::vector<double> v = r.finiteNumbers("range", 2);
+    if (v.size() == 2 && !(v[1] > v[0])) {
+      r.problem("range", "expected [raw value at throttle 0, raw value at throttle 1] with the second larger");
+    } else if (v.size() == 2) {
+      c.range = {v[0], v[1]};
+    }
+  }
+  if (r.has("range_params")) {
+    c.range_params = r.texts("range_params");
+    if (c.range_params.size() != 2) r.problem("range_params", "expected two parameter names (throttle 0 and 1)");
+  }
+  if (r.has("nan_is_stopped")) c.nan_is_stopped = r.boolean("nan_is_stopped");
 }
 
 MappedChannel readChannel(MapReader& r, const ChannelSpec& spec, const YamlContext& ctx) {
@@ -129,7 +146,10 @@ MappedChannel readChannel(MapReader& r, const ChannelSpec& spec, const YamlConte
     if (with_units) r.problem("unit", "a field writes its own unit: give every field its unit, or none and unit");
   }
   if (r.has("optional")) c.optional = r.boolean("optional");
-  if (std::string(spec.name) == "rotor_speed") readMotors(r, c);
+  const std::string channel = spec.name;
+  if (channel == "rotor_speed" || channel == "throttle") readMotors(r, c);
+  if (channel == "rotor_speed" && r.has("pole_pairs")) c.pole_pairs = static_cast<double>(r.integer("pole_pairs", 1, 100));
+  if (channel == "throttle") readThrottle(r, c);
   r.rejectUnknownKeys();
   return c;
 }

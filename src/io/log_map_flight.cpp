@@ -2,6 +2,7 @@
 // mapFlight (io/log_map.hpp): mapped channels onto one time axis, in SI units and ENU/FLU.
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <map>
@@ -47,6 +48,35 @@ std::string detailOf(const LogError& e) {
   return what.size() > e.file().size() + 2 ? what.substr(e.file().size() + 2) : what;
 }
 
+// The raw values that are throttle 0 and 1: the logged parameters the map names when the log
+// has both and they make a range (ArduPilot leaves MOT_PWM_MIN and MOT_PWM_MAX at 0 to mean
+// "the throttle channel's"), else the map's range. `notes` (when given) is told which.
+std::array<double, 2> throttleRange(const LogData& log, const MappedChannel& c, std::vector<std::string>* notes) {
+  std::array<double, 2> range = c.range;
+  std::string why;
+  if (c.range_params.size() == 2) {
+    const auto lo = log.parameters.find(c.range_params[0]);
+    const auto hi = log.parameters.find(c.range_params[1]);
+    if (lo == log.parameters.end() || hi == log.parameters.end()) {
+      why = "the log has no " + (lo == log.parameters.end() ? c.range_params[0] : c.range_params[1]);
+    } else if (!(std::isfinite(lo->second) && std::isfinite(hi->second) && hi->second > lo->second &&
+                 lo->second > 0.0)) {
+      why = c.range_params[0] + " and " + c.range_params[1] + " do not make a range";
+    } else {
+      range = {lo->second, hi->second};
+      why = "from " + c.range_params[0] + " and " + c.range_params[1];
+    }
+  }
+  if (notes != nullptr) {
+    char text[96];
+    std::snprintf(text, sizeof text, "throttle: raw %g is 0 and %g is 1", range[0], range[1]);
+    const bool from_log = why.rfind("from ", 0) == 0;
+    const std::string origin = from_log ? why : "the map's range" + (why.empty() ? "" : ": " + why);
+    notes->push_back(text + (" (" + origin + ")") + (c.nan_is_stopped ? "; a NaN is a stopped motor" : ""));
+  }
+  return range;
+}
+
 std::optional<Series> find(const LogData& log, const LogMap& map, const std::string& name,
                            std::vector<std::string>& notes) {
   const auto it = map.channels.find(name);
@@ -83,6 +113,22 @@ std::optional<Series> find(const LogData& log, const LogMap& map, const std::str
     if (scale != 1.0) {
       for (auto& v : f.values) v *= scale;
     }
+    if (name == "throttle") {
+      // Into 0…1, and −1 for a stopped motor: a NaN where the map says so (PX4; its 0 is then an
+      // armed motor at idle), else a value at or below throttle 0 (a disarmed ArduPilot output
+      // at MOT_PWM_MIN, a Crazyflie motor at 0).
+      const std::array<double, 2> range =
+          option ? std::array<double, 2>{0.0, 1.0} : throttleRange(log, c, k == 0 ? &notes : nullptr);
+      const bool nan_stops = c.nan_is_stopped && !option;
+      for (auto& v : f.values) {
+        if (std::isnan(v)) {
+          if (nan_stops) v = kStoppedThrottle;
+          continue;
+        }
+        v = (v - range[0]) / (range[1] - range[0]);
+        if (!nan_stops && v <= 0.0) v = kStoppedThrottle;
+      }
+    }
     s.parts.push_back({f.topic, std::move(f.values), c.fields[k]});
   }
   return s;
@@ -93,14 +139,14 @@ std::optional<Series> find(const LogData& log, const LogMap& map, const std::str
 // does not say (no such field or parameter, a value that is no motor, two fields on one motor)
 // the fields are taken in order, with a warning: a log from another firmware version must still
 // be read, and a hover fit uses the sum of n² only.
-std::vector<unsigned> motorNumbers(const LogData& log, const LogMap& map, const MappedChannel& c,
-                                   std::vector<std::string>& warnings) {
+std::vector<unsigned> motorNumbers(const LogData& log, const LogMap& map, const std::string& channel,
+                                   const MappedChannel& c, std::vector<std::string>& warnings) {
   const std::size_t n = c.fields.size();
   std::vector<unsigned> in_order(n);
   for (std::size_t k = 0; k < n; ++k) in_order[k] = static_cast<unsigned>(k + 1);
   if (c.motor_of_field.empty()) return in_order;
   const auto fallback = [&](const std::string& why) {
-    warnings.push_back("rotor_speed motor_of_field of the map " + map.source + ": " + why +
+    warnings.push_back(channel + " motor_of_field of the map " + map.source + ": " + why +
                        ": the fields are taken as motors 1 to " + std::to_string(n) + " in order");
     return in_order;
   };
@@ -136,16 +182,15 @@ std::vector<unsigned> motorNumbers(const LogData& log, const LogMap& map, const 
   return motors;
 }
 
-// Puts the rotor speeds into geaware's rotor order (model::Mixer).
+// Puts rotor speeds or throttles into geaware's rotor order (model::Mixer).
 void toRotorOrder(const LogData& log, const LogMap& map, Series& s, std::vector<std::string>& notes,
                   std::vector<std::string>& warnings) {
   const MappedChannel& c = *s.spec;
   if (std::find(c.from_option.begin(), c.from_option.end(), true) != c.from_option.end()) {
-    notes.push_back("rotor_speed: --column gives rotor speeds in geaware's rotor order; the map's motor order is not "
-                    "applied");
+    notes.push_back(s.name + ": --column gives them in geaware's rotor order; the map's motor order is not applied");
     return;
   }
-  const std::vector<unsigned> motors = motorNumbers(log, map, c, warnings);
+  const std::vector<unsigned> motors = motorNumbers(log, map, s.name, c, warnings);
   std::vector<Component> ordered(s.parts.size());
   for (std::size_t k = 0; k < s.parts.size(); ++k) {
     const unsigned motor = motors[k];
@@ -154,7 +199,7 @@ void toRotorOrder(const LogData& log, const LogMap& map, Series& s, std::vector<
   }
   s.parts = std::move(ordered);
   if (!c.motor_of_field.empty() || !c.rotor_of_motor.empty()) {
-    std::string text = "rotor_speed in geaware's rotor order:";
+    std::string text = s.name + " in geaware's rotor order:";
     for (std::size_t r = 0; r < s.parts.size(); ++r) {
       text += (r ? ", " : " ") + std::to_string(r + 1) + " = " + s.parts[r].field;
     }
@@ -212,9 +257,10 @@ void store(const std::string& name, const std::vector<double>& r, MappedFlight& 
   if (name == "attitude") {
     for (std::size_t i = 0; i < 4; ++i) out.q_WB[i].push_back(r[i]);
   }
-  if (name == "rotor_speed") {
-    out.n_rpm.resize(r.size());
-    for (std::size_t i = 0; i < r.size(); ++i) out.n_rpm[i].push_back(r[i]);
+  if (name == "rotor_speed" || name == "throttle") {
+    auto& per_rotor = name == "rotor_speed" ? out.n_rpm : out.throttle;
+    per_rotor.resize(r.size());
+    for (std::size_t i = 0; i < r.size(); ++i) per_rotor[i].push_back(r[i]);
   }
 }
 
@@ -285,7 +331,7 @@ MappedFlight mapFlight(const LogData& log, const LogMap& map, const std::vector<
     if (auto s = find(log, map, name, out.notes)) series.push_back(std::move(*s));
   }
   for (auto& s : series) {
-    if (s.name == "rotor_speed") toRotorOrder(log, map, s, out.notes, out.warnings);
+    if (s.name == "rotor_speed" || s.name == "throttle") toRotorOrder(log, map, s, out.notes, out.warnings);
   }
   // The time base: the slowest topic (interpolating it onto a faster one would invent data).
   TimeAxes axes(map, log);
@@ -300,11 +346,14 @@ MappedFlight mapFlight(const LogData& log, const LogMap& map, const std::vector<
       char text[64];
       std::snprintf(text, sizeof text, "%.4g Hz", rate);
       out.notes.push_back(s.name + ": " + topicName(*t) + ", " + std::to_string(t->size()) + " samples at " + text);
-      if (rate < kMinFitRateHz) {
+      if (rate < kMinFitRateHz && s.name != "battery_voltage") {
         out.warnings.push_back(s.name + " (" + topicName(*t) + ") is logged at " + text + ", slower than the " +
                                std::to_string(static_cast<int>(kMinFitRateHz)) +
                                " Hz a fit of the vehicle's motion needs: the fit runs on its samples only");
       }
+      // The battery voltage changes over minutes: a slow battery topic is interpolated, not made
+      // the time base (unless it is the only one).
+      if (s.name == "battery_voltage" && series.size() > 1) continue;
       if (base == nullptr || rate < rateOf(axes.of(*base))) base = t;
     }
   }
@@ -362,13 +411,31 @@ MappedFlight mapFlight(const LogData& log, const LogMap& map, const std::vector<
     for (std::size_t k = 0; k < series.size(); ++k) store(series[k].name, row[k], out);
   }
   for (const auto& s : series) {
-    if (s.name != "rotor_speed") continue;
-    out.n_rpm.resize(s.parts.size());
-    for (const auto& p : s.parts) out.rotor_fields.push_back(p.field);
+    if (s.name == "rotor_speed") {
+      out.n_rpm.resize(s.parts.size());
+      for (const auto& p : s.parts) out.rotor_fields.push_back(p.field);
+    } else if (s.name == "throttle") {
+      out.throttle.resize(s.parts.size());
+      for (const auto& p : s.parts) out.throttle_fields.push_back(p.field);
+    }
   }
   if (outside > 0) out.notes.push_back(std::to_string(outside) + " samples of the time base outside another channel's time span: dropped");
   if (with_nan > 0) out.notes.push_back(std::to_string(with_nan) + " samples with a NaN in a mapped field: dropped");
   return out;
+}
+
+bool logHasChannel(const LogData& log, const LogMap& map, const std::string& name) {
+  const auto it = map.channels.find(name);
+  if (it == map.channels.end() || it->second.expressions.empty()) return false;
+  const MappedChannel& c = it->second;
+  const bool option = !c.from_option.empty() && c.from_option[0];
+  try {
+    (void)evaluateOnLog(c.expressions[0], log, c.topic, c.field_instances.empty() ? c.instance : c.field_instances[0],
+                        channelUnit(name, c), name, option || c.expressions[0].hasUnits());
+  } catch (const MissingFieldError&) {
+    return false;
+  }
+  return true;
 }
 
 }  // namespace geaware::io

@@ -103,7 +103,9 @@ TEST(LogMap, TheObserverGivesZeroExternalAccelerationInABalancedHover) {
     f.q_WB[0].push_back(1.0), f.q_WB[1].push_back(0.0), f.q_WB[2].push_back(0.0), f.q_WB[3].push_back(0.0);
   }
   f.n_rpm.assign(4, std::vector<double>(5, n));
-  f.n_rpm[0][2] = f.n_rpm[1][2] = f.n_rpm[2][2] = f.n_rpm[3][2] = 0.0;  // resting: dropped
+  // Resting (dropped), for 1 s: less than kMinRestingS, so no resting height is taken from it.
+  f.n_rpm[0][2] = f.n_rpm[1][2] = f.n_rpm[2][2] = f.n_rpm[3][2] = 0.0;
+  for (auto& t : f.t_s) t *= 0.5;
   const auto r = geaware::ident::flightLogFromMapped(f, m, k_T);
   ASSERT_EQ(r.log.size(), 4u);
   ASSERT_EQ(r.notes.size(), 1u);
@@ -198,6 +200,192 @@ TEST(LogMap, CrazyflieCsvExportInMillisecondsAndG) {
   EXPECT_DOUBLE_EQ(f.n_rpm[3][0], 15100.0);
   EXPECT_DOUBLE_EQ(f.vbat_V[0], 3.9);
   EXPECT_DOUBLE_EQ(f.q_WB[0][0], 1.0);
+}
+
+}  // namespace
+
+namespace {
+
+// --- vehicles without rotor-speed telemetry (issue 11 item 4) ----------------------------------
+
+const char* kThrottleMap = R"(family: test
+frames: enu_flu
+channels:
+  height: {topic: pos, fields: [h], unit: m}
+  specific_force: {topic: pos, fields: [ax, ay, az], unit: m/s^2, frame: body}
+  attitude: {topic: pos, fields: [qw, qx, qy, qz], frame: quaternion}
+  throttle:
+    topic: out
+    fields: [C1, C2, C3, C4]
+    range: [1000, 2000]
+    range_params: [MOT_PWM_MIN, MOT_PWM_MAX]
+    rotor_of_motor: [1, 2, 4, 3]
+)";
+
+LogData throttleLog(double c1, double c3) {
+  LogData log;
+  log.source = "pwm.bin";
+  log.topics.push_back(topic("pos", 0.1, 11, {{"h", 0.5}, {"ax", 0.0}, {"ay", 0.0}, {"az", 9.81}, {"qw", 1.0},
+                                              {"qx", 0.0}, {"qy", 0.0}, {"qz", 0.0}}));
+  log.topics.push_back(topic("out", 0.1, 11, {{"C1", c1}, {"C2", 1500.0}, {"C3", c3}, {"C4", 2000.0}}));
+  return log;
+}
+
+TEST(LogMapThrottle, PwmIsScaledByTheLoggedRangeAndReordered) {
+  const auto map = geaware::io::parseLogMap(kThrottleMap, "map.yaml", "test");
+  LogData log = throttleLog(1300.0, 1000.0);
+  // Without the parameters: the map's 1000…2000 us; at 1000 us the motor is stopped.
+  auto f = geaware::io::mapFlight(log, map, {"height", "throttle"});
+  ASSERT_EQ(f.throttle.size(), 4u);
+  EXPECT_DOUBLE_EQ(f.throttle[0][0], 0.3);
+  EXPECT_DOUBLE_EQ(f.throttle[1][0], 0.5);
+  EXPECT_DOUBLE_EQ(f.throttle[2][0], 1.0);  // the log's motor 4 is geaware's rotor 3
+  EXPECT_DOUBLE_EQ(f.throttle[3][0], geaware::io::kStoppedThrottle);
+  EXPECT_EQ(f.throttle_fields[2], "C4");
+  bool said = false;
+  for (const auto& n : f.notes) said = said || n.find("raw 1000 is 0 and 2000 is 1 (the map's range: the log has no MOT_PWM_MIN)") != std::string::npos;
+  EXPECT_TRUE(said);
+  // With MOT_PWM_MIN and MOT_PWM_MAX logged: 1100…1900 us.
+  log.parameters = {{"MOT_PWM_MIN", 1100.0}, {"MOT_PWM_MAX", 1900.0}};
+  f = geaware::io::mapFlight(log, map, {"height", "throttle"});
+  EXPECT_DOUBLE_EQ(f.throttle[0][0], 0.25);
+  EXPECT_DOUBLE_EQ(f.throttle[2][0], 1.125);
+  // ArduPilot's 0 for "the throttle channel's range" is no range: the map's again.
+  log.parameters = {{"MOT_PWM_MIN", 0.0}, {"MOT_PWM_MAX", 0.0}};
+  EXPECT_DOUBLE_EQ(geaware::io::mapFlight(log, map, {"height", "throttle"}).throttle[0][0], 0.3);
+}
+
+TEST(LogMapThrottle, PX4NaNIsAStoppedMotorAndZeroAnIdleOne) {
+  const auto map = geaware::io::loadLogMap("px4");
+  const auto& c = map.channels.at("throttle");
+  EXPECT_TRUE(c.nan_is_stopped);
+  LogData log;
+  log.source = "px4.ulg";
+  log.topics.push_back(topic("vehicle_local_position", 0.1, 5, {{"dist_bottom", 0.3}}));
+  auto motors = topic("actuator_motors", 0.1, 5, {{"control[0]", 0.0}, {"control[1]", 0.4}, {"control[2]", 0.4},
+                                                  {"control[3]", 0.4}});
+  motors.channels[0].values[3] = std::nan("");
+  log.topics.push_back(motors);
+  const auto f = geaware::io::mapFlight(log, map, {"height", "throttle"});
+  ASSERT_EQ(f.size(), 5u);  // the NaN is a value, not a gap
+  EXPECT_DOUBLE_EQ(f.throttle[0][0], 0.0);
+  EXPECT_DOUBLE_EQ(f.throttle[0][3], geaware::io::kStoppedThrottle);
+  EXPECT_DOUBLE_EQ(f.throttle[1][3], 0.4);
+}
+
+TEST(LogMapThrottle, BadRangesAreNamed) {
+  try {
+    (void)geaware::io::parseLogMap("family: x\nframes: enu_flu\nchannels:\n  throttle:\n    fields: [a]\n"
+                                   "    range: [2000, 1000]\n    range_params: [LO]\n    pole_pairs: 7\n",
+                                   "t.yaml", "t");
+    FAIL() << "no error";
+  } catch (const geaware::io::ConfigError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("t.yaml:6"), std::string::npos) << what;
+    EXPECT_NE(what.find("with the second larger"), std::string::npos) << what;
+    EXPECT_NE(what.find("expected two parameter names"), std::string::npos) << what;
+    EXPECT_NE(what.find("pole_pairs"), std::string::npos) << what;  // a rotor_speed key only
+  }
+}
+
+geaware::io::MappedFlight throttleFlight(std::vector<double> throttles, std::vector<double> volts) {
+  geaware::io::MappedFlight f;
+  f.source = "thr";
+  for (std::size_t i = 0; i < throttles.size(); ++i) f.t_s.push_back(0.01 * static_cast<double>(i));
+  f.throttle.assign(4, throttles);
+  f.throttle_fields = {"a", "b", "c", "d"};
+  f.vbat_V = std::move(volts);
+  return f;
+}
+
+TEST(LogMapThrottle, RotorSpeedsFollowTheCurveAndTheBatteryVoltage) {
+  geaware::model::ThrottleCurveParams curve;
+  curve.c2_rpm2 = -1e8, curve.c1_rpm2 = 5e8, curve.c0_rpm2 = 1e7;
+  curve.reference_voltage_V = 16.0, curve.voltage_exponent = 1.0;
+  auto f = throttleFlight({0.5, -1.0, 1.25, 0.0}, {15.0, 15.0, 16.0, 16.8});
+  const auto r = geaware::ident::rotorSpeedsFromThrottle(f, curve);
+  ASSERT_EQ(f.n_rpm.size(), 4u);
+  EXPECT_NEAR(f.n_rpm[0][0], std::sqrt(-1e8 * 0.25 + 5e8 * 0.5 + 1e7) * 15.0 / 16.0, 1e-9);
+  EXPECT_EQ(f.n_rpm[2][1], 0.0);                                          // stopped
+  EXPECT_NEAR(f.n_rpm[1][2], std::sqrt(-1e8 + 5e8 + 1e7), 1e-9);          // 1.25 taken as 1
+  EXPECT_NEAR(f.n_rpm[3][3], std::sqrt(1e7) * 16.8 / 16.0, 1e-9);         // idle at 0
+  EXPECT_EQ(f.rotor_fields[0], "throttle a");
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("4 throttle values above 1"), std::string::npos) << r.warnings[0];
+  // Without a logged voltage the curve holds at V_ref, and that is said.
+  auto g = throttleFlight({0.5, 0.5}, {});
+  const auto w = geaware::ident::rotorSpeedsFromThrottle(g, curve);
+  EXPECT_NEAR(g.n_rpm[0][0], std::sqrt(-1e8 * 0.25 + 5e8 * 0.5 + 1e7), 1e-9);
+  ASSERT_EQ(w.warnings.size(), 1u);
+  EXPECT_NE(w.warnings[0].find("the log has none"), std::string::npos);
+  EXPECT_THROW((void)geaware::ident::rotorSpeedsFromThrottle(g, geaware::model::ThrottleCurveParams{}),
+               std::invalid_argument);
+}
+
+// A take-off: 3 s disarmed on the ground at 0.10 m, 2 s spinning up there (thrust from 10 % to
+// 90 % of the weight), then 5 s of hover at 0.5 m with thrust = weight.
+TEST(LogMapThrottle, RowsStandingOnTheGroundAreNotReadAsGroundEffect) {
+  geaware::io::MappedFlight f;
+  f.source = "takeoff";
+  const double m = 1.5, k_T = 2e-8, g = 9.81, dt = 0.05;
+  const double n_hover = std::sqrt(m * g / (4.0 * k_T));
+  f.n_rpm.assign(4, {});
+  for (int i = 0; i < 200; ++i) {
+    const double t = dt * i;
+    double n = 0.0, h = 0.10;
+    if (t >= 3.0 && t < 5.0) n = n_hover * std::sqrt(0.1 + 0.8 * (t - 3.0) / 2.0);
+    if (t >= 5.0) n = n_hover, h = 0.5;
+    f.t_s.push_back(t);
+    f.h_m.push_back(h + 0.003 * std::sin(7.0 * i));  // a range finder's few mm of noise
+    f.f_B_mps2[0].push_back(0.0), f.f_B_mps2[1].push_back(0.0), f.f_B_mps2[2].push_back(g);
+    f.q_WB[0].push_back(1.0), f.q_WB[1].push_back(0.0), f.q_WB[2].push_back(0.0), f.q_WB[3].push_back(0.0);
+    for (auto& r : f.n_rpm) r.push_back(n);
+  }
+  const auto r = geaware::ident::flightLogFromMapped(f, m, k_T);
+  ASSERT_EQ(r.log.size(), 100u);  // the hover only
+  for (std::size_t i = 0; i < r.log.size(); ++i) EXPECT_NEAR(r.log.a_ext_W[2][i], 0.0, 1e-9);
+  ASSERT_EQ(r.notes.size(), 2u);
+  EXPECT_NE(r.notes[0].find("60 of 200 samples with every rotor at 0 rpm"), std::string::npos) << r.notes[0];
+  EXPECT_NE(r.notes[1].find("40 of 200 samples standing on the ground"), std::string::npos) << r.notes[1];
+  // The same spin-up with no disarmed rows (PX4 armed at idle): the thrust far below what the
+  // IMU shows held up marks the ground, with no k_T needed (a k_T 3 times too large changes nothing).
+  for (auto& rotor : f.n_rpm) {
+    for (std::size_t i = 0; i < 60; ++i) rotor[i] = 0.2 * n_hover;
+  }
+  EXPECT_EQ(geaware::ident::flightLogFromMapped(f, m, k_T).log.size(), 100u);
+  EXPECT_EQ(geaware::ident::flightLogFromMapped(f, m, 3.0 * k_T).log.size(), 100u);
+}
+
+}  // namespace
+
+namespace {
+
+// A Crazyflie CSV export without the rpm deck: its PWM ratios (0…65535) are the throttle, in the
+// rpm deck's motor order; a cell left empty (a merged export) or -inf in a column the map does not
+// use does not stop the read, and a row with a gap in a mapped field is dropped and counted.
+TEST(LogMap, CrazyflieCsvWithPwmOnlyAndGaps) {
+  const auto dir = std::filesystem::path(::testing::TempDir()) / "geaware_log_map_cf_pwm";
+  std::filesystem::create_directories(dir);
+  const auto file = dir / "cf_pwm.csv";
+  {
+    std::ofstream out(file);
+    out << "Timestamp,stateEstimate.z,pwm.m1_pwm,pwm.m2_pwm,pwm.m3_pwm,pwm.m4_pwm,unused\n";
+    for (int i = 0; i < 30; ++i) {
+      out << 1000 + 10 * i << "," << (i == 7 ? std::string() : "0.3") << ",32767.5,0,65535,13107,"
+          << (i % 2 == 0 ? "-inf" : "") << "\n";
+    }
+  }
+  const auto log = geaware::io::readLog(file);
+  const auto map = geaware::io::loadLogMap("crazyflie");
+  const auto f = geaware::io::mapFlight(log, map, {"height", "throttle"});
+  ASSERT_EQ(f.size(), 29u);
+  EXPECT_DOUBLE_EQ(f.throttle[0][0], 0.5);                           // m1: rotor 1
+  EXPECT_DOUBLE_EQ(f.throttle[3][0], geaware::io::kStoppedThrottle);  // m2 at 0: rotor 4, stopped
+  EXPECT_DOUBLE_EQ(f.throttle[1][0], 1.0);                           // m3: rotor 2
+  EXPECT_DOUBLE_EQ(f.throttle[2][0], 0.2);                           // m4: rotor 3
+  bool counted = false;
+  for (const auto& n : f.notes) counted = counted || n == "1 samples with a NaN in a mapped field: dropped";
+  EXPECT_TRUE(counted);
 }
 
 }  // namespace

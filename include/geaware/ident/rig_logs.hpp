@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "geaware/io/column_expression.hpp"
+#include "geaware/model/vehicle_params.hpp"
 
 namespace geaware::ident {
 
@@ -150,7 +151,14 @@ namespace geaware::ident {
 /// A flight log made from a mapped autopilot log (io::mapFlight: ENU/FLU, SI, one time axis),
 /// with the external acceleration computed as the paper's observer does (eq. 3, unfiltered):
 /// a_ext = R_WB·f_IMU − z_B·k_T·Σn²/m, with the mass and k_T given. Rows where every rotor reads
-/// 0 rpm (on the ground, disarmed) are dropped and counted in `notes`.
+/// 0 rpm (on the ground, disarmed) are dropped and counted in `notes`. So are the rows where the
+/// ground holds the vehicle up: those where m·(R_WB·f_IMU)_z/Σn² is over twice its lower
+/// quartile over the rows with rotors turning (its value in flight, k_T·(1 + F_G)) — too little
+/// thrust to fly — and, when those and the stopped rows last kMinRestingS, their median height
+/// being the height the vehicle rests at, the rows with rotors turning within
+/// kGroundContactMarginM of it (spinning up before a take-off or down after a landing). The ground's support would otherwise be read as
+/// a ground effect of tens of percent or more. (A log less than a quarter airborne defeats the
+/// quartile; so does one that flies lower than it rests.)
 struct MappedFlightLog {
   FlightLog log;
   std::vector<std::string> notes;
@@ -159,5 +167,28 @@ struct MappedFlightLog {
 /// Throws std::invalid_argument naming what is missing.
 [[nodiscard]] MappedFlightLog flightLogFromMapped(const io::MappedFlight& flight, double mass_kg,
                                                   double k_T_N_per_rpm2);
+
+/// Height above the resting height within which a vehicle with turning rotors is taken to stand
+/// on the ground [m] (a range finder's noise is about 1 cm; airborne, the vehicle leaves it within
+/// a fraction of a second).
+inline constexpr double kGroundContactMarginM = 0.02;
+/// Rows held up by the ground make a resting height only when they last this long in all [s].
+inline constexpr double kMinRestingS = 1.0;
+
+/// Rotor speeds of a vehicle that logs no rotor speed, from its throttles (flight.throttle, 0…1
+/// each) through the vehicle's ESC throttle curve and, when the curve has a voltage dependence
+/// (reference_voltage_V > 0), the logged battery voltage: n_i = model::ThrottleCurve::speedRpm(
+/// t_i, V) (docs/identification.md, "Vehicles without rotor-speed telemetry"). A stopped motor
+/// (io::kStoppedThrottle, any negative throttle) turns at 0 rpm; a throttle above 1 is taken as 1
+/// and counted. The curve gives
+/// steady speeds: a motor's lag (tens of ms) is not modelled, so fast throttle changes add noise.
+/// Fills flight.n_rpm and flight.rotor_fields. Throws std::invalid_argument when the flight has
+/// no throttles or the curve is not a curve (c2, c1, c0 all 0).
+struct ThrottleConversion {
+  std::vector<std::string> notes;
+  std::vector<std::string> warnings;
+};
+[[nodiscard]] ThrottleConversion rotorSpeedsFromThrottle(io::MappedFlight& flight,
+                                                         const model::ThrottleCurveParams& curve);
 
 }  // namespace geaware::ident

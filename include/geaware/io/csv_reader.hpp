@@ -47,6 +47,9 @@ struct CsvColumn {
   std::string name;                                            ///< header name
   double min = -std::numeric_limits<double>::infinity();       ///< smallest plausible value
   double max = std::numeric_limits<double>::infinity();        ///< largest plausible value
+  /// NaN, ±inf and empty cells are read as NaN and ±inf rather than refused: a log's column that
+  /// a reader may not use (a mapped CSV export, io::readLog), whose gaps its user then counts.
+  bool non_finite = false;
 };
 
 struct CsvReadOptions {

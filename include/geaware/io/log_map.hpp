@@ -54,6 +54,17 @@ struct MappedChannel {
   /// Magnet pole pairs of the motors: a logged electrical speed divided by it is the rotor's
   /// (1: the log gives mechanical rpm).
   double pole_pairs = 1.0;
+  // Throttles only (docs/identification.md, "Vehicles without rotor-speed telemetry"); the motor
+  // order above applies to them as to rotor speeds:
+  /// The raw values that are throttle 0 and 1 (PWM 1000 and 2000 µs, a Crazyflie's 0 and 65535,
+  /// PX4's actuator_motors 0 and 1): throttle = (raw − range[0]) / (range[1] − range[0]).
+  std::array<double, 2> range{0.0, 1.0};
+  /// Logged parameters that hold the range (ArduPilot's MOT_PWM_MIN and MOT_PWM_MAX); used when
+  /// the log has both and they make a range, else `range` (a note says which).
+  std::vector<std::string> range_params;
+  /// A NaN throttle is a stopped motor (PX4 logs NaN for a disarmed motor), not a missing value,
+  /// and throttle 0 an armed motor at idle; otherwise throttle 0 and below are a stopped motor.
+  bool nan_is_stopped = false;
   int line = 0;  ///< line in the map file
 };
 
@@ -66,7 +77,8 @@ struct LogMap {
   /// to seconds (`time: {field: timestamp, unit: ms}`); empty: the reader's time axes.
   std::string time_field;
   double time_scale = 1.0;
-  /// height, specific_force, gyro, attitude, velocity, rotor_speed, battery_voltage (any subset).
+  /// height, specific_force, gyro, attitude, velocity, rotor_speed, throttle, battery_voltage
+  /// (any subset).
   std::map<std::string, MappedChannel> channels;
 };
 
@@ -80,8 +92,9 @@ struct LogMap {
 
 /// The flight columns `--column` and `--const` may define with a map, each with its channel and
 /// component: h_m (height), a_x_mps2 … (specific_force), gyro_x_radps …, qw … qz (attitude as a
-/// quaternion), vx_mps … (velocity), n1_rpm … n8_rpm (rotor_speed, geaware's rotor order applies
-/// to the map's fields, not to these), vbat_V (battery_voltage).
+/// quaternion), vx_mps … (velocity), n1_rpm … n8_rpm (rotor_speed), throttle1 … throttle8 (throttle,
+/// each a fraction 0…1; geaware's rotor order applies to the map's fields, not to these), vbat_V
+/// (battery_voltage).
 [[nodiscard]] std::vector<std::string> mappedColumnNames();
 /// Puts each definition into `map` in place of the map's field (the channel is created when the
 /// map has none: then every component of it must be defined). Values of a definition are in
@@ -117,12 +130,21 @@ struct MappedFlight {
   std::array<std::vector<double>, 3> v_W_mps;       ///< ENU
   std::vector<std::vector<double>> n_rpm;           ///< one vector per rotor, geaware's order
   std::vector<std::string> rotor_fields;            ///< the log field of each rotor (n_rpm's order)
+  /// Throttle of each rotor, 0…1, or kStoppedThrottle for a stopped motor (geaware's order),
+  /// when asked for.
+  std::vector<std::vector<double>> throttle;
+  std::vector<std::string> throttle_fields;         ///< the log field of each rotor (throttle's order)
   std::vector<double> vbat_V;
   std::vector<std::string> notes;        ///< rates, time base, rows dropped
   /// Channels logged slower than kMinFitRateHz (each named with its rate).
   std::vector<std::string> warnings;
   [[nodiscard]] std::size_t size() const noexcept { return t_s.size(); }
 };
+
+/// MappedFlight::throttle of a stopped motor: a NaN where the map's nan_is_stopped says so (PX4
+/// logs NaN for a disarmed motor and 0 for one armed at idle), else a raw value at or below the
+/// range's throttle 0 (a disarmed ArduPilot output, a Crazyflie motor at 0).
+inline constexpr double kStoppedThrottle = -1.0;
 
 /// A mapped channel logged slower than this [Hz] is named in MappedFlight::warnings: a quadrotor's
 /// thrust and attitude change within tenths of a second, so a fit sampled slower sees them aliased.
@@ -135,5 +157,9 @@ inline constexpr double kMinFitRateHz = 20.0;
 /// Throws LogError naming the log, the map and the missing channel, topic or field (with the
 /// fields the log has).
 [[nodiscard]] MappedFlight mapFlight(const LogData& log, const LogMap& map, const std::vector<std::string>& wanted);
+
+/// Whether `log` has channel `name` of `map`: the map names it and the log has the fields of its
+/// first component (a constant counts).
+[[nodiscard]] bool logHasChannel(const LogData& log, const LogMap& map, const std::string& name);
 
 }  // namespace geaware::io
