@@ -6,6 +6,7 @@
 // pyulog's double and ours are the same bits; NaN matches NaN). Then the ways a file goes bad.
 
 #include "geaware/io/log_channels.hpp"
+#include "geaware/io/log_inspect.hpp"
 
 #include <bit>
 #include <cmath>
@@ -304,6 +305,50 @@ TEST(ULogReader, SubscriptionsOfMoreThanAMillionFieldsAreRefused) {
   } catch (const LogError& e) {
     EXPECT_NE(std::string(e.what()).find("fields subscribed in all"), std::string::npos) << e.what();
   }
+}
+
+}  // namespace
+
+namespace {
+
+std::string bytesOfValue(const auto& v) {
+  std::string out(sizeof v, '\0');
+  std::memcpy(out.data(), &v, sizeof v);
+  return out;
+}
+
+// A dropout message ('O', its uint16 duration in ms; ULog format specification) is kept with the
+// time of the last message before it, the data around it is read, and `logs inspect` lists it.
+TEST(ULogReader, DropoutsAreKeptWithTheirTimeAndDuration) {
+  std::vector<std::byte> b;
+  for (const int c : {0x55, 0x4c, 0x6f, 0x67, 0x01, 0x12, 0x35, 0x01}) b.push_back(static_cast<std::byte>(c));
+  for (int i = 0; i < 8; ++i) b.push_back(std::byte{0});
+  message(b, 'B', std::string(40, '\0'));
+  message(b, 'F', "t:uint64_t timestamp;float x;");
+  message(b, 'A', std::string{'\0', '\0', '\0'} + "t");
+  const auto data = [&](std::uint64_t t_us, float x) {
+    message(b, 'D', std::string(2, '\0') + bytesOfValue(t_us) + bytesOfValue(x));
+  };
+  data(1'000'000, 1.0f);
+  data(1'010'000, 2.0f);
+  message(b, 'O', bytesOfValue(std::uint16_t{250}));  // 250 ms lost
+  data(1'270'000, 3.0f);
+  message(b, 'O', bytesOfValue(std::uint16_t{65535}));
+  const LogData log = readULog(b, "dropouts.ulg");
+  ASSERT_EQ(log.dropouts.size(), 2u);
+  EXPECT_DOUBLE_EQ(log.dropouts[0].time_s, 1.01);
+  EXPECT_DOUBLE_EQ(log.dropouts[0].duration_s, 0.25);
+  EXPECT_DOUBLE_EQ(log.dropouts[1].time_s, 1.27);
+  EXPECT_DOUBLE_EQ(log.dropouts[1].duration_s, 65.535);
+  ASSERT_EQ(log.topics.size(), 1u);
+  EXPECT_EQ(log.topics[0].time_s, (std::vector<double>{1.0, 1.01, 1.27}));
+  EXPECT_EQ(log.topics[0].channel("x")->values, (std::vector<double>{1.0, 2.0, 3.0}));
+  const std::string text = geaware::io::summaryText(geaware::io::inspectLog(log));
+  EXPECT_NE(text.find("2 dropouts"), std::string::npos) << text;
+  EXPECT_NE(text.find("dropout at t = 0.010 s for 0.25 s"), std::string::npos) << text;
+  // A dropout message of the wrong size is an error at its offset, not a value read past it.
+  message(b, 'O', "x");
+  EXPECT_THROW((void)readULog(b, "short-dropout.ulg"), LogError);
 }
 
 }  // namespace
