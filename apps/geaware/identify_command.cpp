@@ -43,6 +43,7 @@ struct IdentifyOptions {
   double tilt_limit_deg = 10.0;
   int height_bands = 6;
   bool hover = false;
+  bool fade = false;                    ///< flight: the forward-flight fade v_i
   bool accept_warnings = false;         ///< write --out despite blocking warnings
   std::string ground_effect = "paper";  ///< paper: the closed forms; table: values at knots
   double table_top_m = 0.5;             ///< automatic F_G knots up to this height [m]
@@ -208,6 +209,7 @@ ident::IdentifyResult identify(const IdentifyOptions& opt, const model::VehicleP
     return withNotes(ident::identifyCorrelations(log, base), notes);
   }
   const ident::FlightLog log = readFlight(opt, base, notes);
+  if (opt.fade) return withNotes(ident::identifyForwardFade(log, base, io_opt), notes);
   return withNotes(opt.hover ? ident::identifyHover(log, base, io_opt) : ident::identifyFlight(log, base, io_opt),
                    notes);
 }
@@ -432,7 +434,11 @@ Runner addIdentifyCommand(CLI::App& app) {
       sub->add_option("--height-bands", opts->height_bands, "number of height bands")->check(wholeIn(1, 100))->capture_default_str();
     }
     if (name == "flight") {
-      sub->add_flag("--hover", opts->hover, "the log is a hover descent: fit F_G (eq. 10)");
+      auto* hover = sub->add_flag("--hover", opts->hover, "the log is a hover descent: fit F_G (eq. 10)");
+      sub->add_flag("--fade", opts->fade,
+                    "the log flies near the ground at two or more speeds: fit the ground effect's forward-flight "
+                    "fade, ground_effect.forward_fade.induced_velocity_mps, against --vehicle's F_G(h)")
+          ->excludes(hover);
       sub->add_option("--map", opts->map,
                       "read an autopilot log (PX4 .ulg, ArduPilot .bin, Crazyflie uSD, MATLAB .mat, CSV export) through a log map: a built-in "
                       "name (px4, ardupilot, crazyflie) or a map file (docs/identification.md, \"Mapping a log\")");

@@ -193,7 +193,7 @@ Eigen::Vector3d Controller::disturbanceResidual(const ControllerInput& in, doubl
     const bool model = params_.acceleration == AccelerationCompensation::kModel;
     const Eigen::Vector2d d = model ? drag_.coefficients(h) : drag_.highAltitudeCoefficients();
     Eigen::Vector3d explained = model::RotorDragModel::force_W(R, in.estimate.v_W, d) / mass_kg_;
-    if (model) explained += ground_effect_.thrustRatio(h) * thrust_ref_N / mass_kg_ * R.col(2);
+    if (model) explained += mem_.fade_est_ * ground_effect_.thrustRatio(h) * thrust_ref_N / mass_kg_ * R.col(2);
     if (params_.per_rotor_ground_effect) explained += a_shape_W;  // partial ground effect
     const double lim = params_.dob_limit_mps2;
     const Eigen::Vector3d raw = (in.external_accel_W - explained).cwiseMax(-lim).cwiseMin(lim);
@@ -287,7 +287,8 @@ Eigen::Vector3d Controller::thrustVectorCommand(const ControllerInput& in,
   // forward at the reference's height, but acts at the measured one.
   const double a_gap = params_.acceleration == AccelerationCompensation::kModel
                            ? ref.thrust_N / mass_kg_ * z_B.z() *
-                                 (ground_effect_.thrustRatio(mem_.last_height_m_) - ground_effect_.thrustRatio(h))
+                                 (mem_.fade_est_ * ground_effect_.thrustRatio(mem_.last_height_m_) -
+                                  mem_.fade_ref_ * ground_effect_.thrustRatio(h))
                            : 0.0;
   if (a_des.z() + a_gap < x.a_z_min) {
     a_des.z() = x.a_z_min - a_gap;  // the clearance guard
@@ -304,7 +305,7 @@ Eigen::Vector3d Controller::thrustVectorCommand(const ControllerInput& in,
       const Eigen::Vector2d d = model ? drag_.coefficients(h) : drag_.highAltitudeCoefficients();
       // a_D = −R·(D/m)·Rᵀ·v_ref: the drag to be overcome is added back.
       a_des -= model::RotorDragModel::force_W(R, r.v_W, d) / mass_kg_;
-      if (model) a_des -= ref.thrust_N / mass_kg_ * ground_effect_.thrustRatio(h) * z_B;  // a_G
+      if (model) a_des -= ref.thrust_N / mass_kg_ * mem_.fade_ref_ * ground_effect_.thrustRatio(h) * z_B;  // a_G
       if (params_.per_rotor_ground_effect) a_des -= x.a_shape;  // zero unless acceleration model
       f_cmd = a_des + Eigen::Vector3d(0.0, 0.0, kGravity);
       if (params_.acceleration == AccelerationCompensation::kNeural) {
@@ -375,6 +376,8 @@ ControllerOutput Controller::step(const ControllerInput& in) noexcept {
   // The height the models are evaluated at.
   std::uint32_t flags = kFlagNone;
   const double h = modelHeight(in, flags);
+  mem_.fade_ref_ = ground_effect_.forwardFade(in.reference.v_W);
+  mem_.fade_est_ = ground_effect_.forwardFade(in.estimate.v_W);
 
   // 1. Reference from the flat map at that height; the filtered measurements.
   const flatness::FlatState ref = reference_map_.evaluate(in.reference, h);
@@ -402,7 +405,7 @@ ControllerOutput Controller::step(const ControllerInput& in) noexcept {
 
   // 4. Thrust and torque (paper eq. 33, 34).
   const double thrust = std::max(mass_kg_ * f_cmd.dot(R.col(2)), 0.0);
-  const Eigen::Vector3d J = detail::usesJPrime(params_.torque) ? ground_effect_.levelingInertiaDiagonal(h)
+  const Eigen::Vector3d J = detail::usesJPrime(params_.torque) ? ground_effect_.levelingInertiaDiagonal(h, mem_.fade_ref_)
                                                        : inertia_kgm2_;
   Eigen::Vector3d tau;
   if (detail::usesIncrementalTorque(params_.torque)) {

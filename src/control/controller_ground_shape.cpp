@@ -29,7 +29,8 @@ Controller::GroundShapeTerms Controller::groundShapeTerms(const ControllerInput&
   double df_sum = 0.0;
   Eigen::Vector3d tau_B = Eigen::Vector3d::Zero();
   for (std::size_t i = 0; i < 4; ++i) {
-    const double df = ground_effect_.thrustRatio(h + mem_.rotor_height_offset_m_[static_cast<int>(i)]) - f0;
+    const double df =
+        mem_.fade_ref_ * (ground_effect_.thrustRatio(h + mem_.rotor_height_offset_m_[static_cast<int>(i)]) - f0);
     df_sum += df;
     // r_i × (0, 0, ΔT_i) = ΔT_i·(r_y, −r_x, 0), ΔT_i = T/4·ΔF_i.
     tau_B += (0.25 * thrust_N * df) * Eigen::Vector3d(rotors_B_[i].y(), -rotors_B_[i].x(), 0.0);
@@ -42,7 +43,8 @@ Controller::GroundShapeTerms Controller::groundShapeTerms(const ControllerInput&
     // Leveling toward the ground's normal n: M_G·T·(z_B × n) (paper eq. 13 with n for z_W), of
     // which J'(h) models the part M_G·T·(z_B × z_W); the rest is predicted here.
     const Eigen::Vector3d extra_W =
-        ground_effect_.levelingCoefficient(h) * thrust_N * z_B.cross(mem_.ground_normal_W_ - Eigen::Vector3d::UnitZ());
+        mem_.fade_ref_ * ground_effect_.levelingCoefficient(h) * thrust_N *
+        z_B.cross(mem_.ground_normal_W_ - Eigen::Vector3d::UnitZ());
     g.tau_B = tau_B + R.transpose() * extra_W;
   }
   return g;

@@ -169,7 +169,9 @@ FlatState FlatMap::evaluate(const traj::FlatOutput& ref, double height_m) const 
     out.status = FlatMapStatus::kNoThrust;
     return out;
   }
-  const double ge_gain = terms_.additional_thrust ? 1.0 + ground_effect_.thrustRatio(height_m) : 1.0;
+  // The ground effect fades in forward flight (exactly 1 without a fade in the vehicle file).
+  const double fade = ground_effect_.forwardFade(v);
+  const double ge_gain = terms_.additional_thrust ? 1.0 + fade * ground_effect_.thrustRatio(height_m) : 1.0;
   out.collective_acc_mps2 = c;
   out.thrust_N = mass_kg_ * c / ge_gain;
 
@@ -188,7 +190,7 @@ FlatState FlatMap::evaluate(const traj::FlatOutput& ref, double height_m) const 
   // 5. Torque with the leveling torque as an inertia change (paper eq. 30) and rotor speeds
   //    through the inverse mixer (paper eq. 2).
   const Eigen::Vector3d J = terms_.leveling_inertia
-                                ? ground_effect_.levelingInertiaDiagonal(height_m)
+                                ? ground_effect_.levelingInertiaDiagonal(height_m, fade)
                                 : inertia_kgm2_;
   const Eigen::Vector3d Jw = J.cwiseProduct(w);
   out.tau_B = J.cwiseProduct(out.w_dot_B) + w.cross(Jw);

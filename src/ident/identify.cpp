@@ -234,6 +234,38 @@ IdentifyResult identifyHover(const FlightLog& log, const model::VehicleParams& b
   return r;
 }
 
+IdentifyResult identifyForwardFade(const FlightLog& log, const model::VehicleParams& base,
+                                   const IdentifyOptions& options) {
+  const ForwardFadeFit fit = fitForwardFade(log, base, options.robust);
+  IdentifyResult r;
+  r.kind = "fade";
+  r.parameters = {{"ground_effect.forward_fade.induced_velocity_mps", fit.induced_velocity_mps, "m/s"},
+                  {"w = 1/v_i²", fit.w_s2_per_m2, "s²/m²"},
+                  {"cushion scale s (against the vehicle's F_G)", fit.cushion_scale, "-"},
+                  {"translational lift c_TL", fit.translational_lift_per_mps2, "s²/m²"},
+                  {"k_T in this flight (not merged)", fit.k_T_N_per_rpm2, "N/rpm²"}};
+  r.residuals = {{"m·z_Bᵀa_ext + k_T·Σn² = k_T'·Σn²·(1 + c_TL·V² + s·F_G(h)/(1 + w·V²))", fit.stats, "N"}};
+  r.warnings = fit.warnings;
+  r.blocking = fit.blocking;
+  r.notes.push_back(fmt::format("{} samples near the ground (F_G(h) >= {:g}), the fastest at {:.3g} m/s",
+                                fit.near_ground, kFadeMinThrustRatio, fit.max_speed_near_ground_mps));
+  if (std::isfinite(fit.induced_velocity_mps.value)) {
+    setEstimate(r.update, "ground_effect.forward_fade.induced_velocity_mps", fit.induced_velocity_mps);
+  }
+  detail::addStatsTables(r);
+  PlotData fade{"Forward-flight fade of the ground cushion", "V [m/s]", "fade [-]", {}};
+  CurveData fitted = curveData("fit 1/(1 + w·V²)", "lines");
+  for (int k = 0; k <= 50; ++k) {
+    const double V = 0.2 * k;
+    fitted.x.push_back(V);
+    fitted.y.push_back(1.0 / (1.0 + fit.w_s2_per_m2.value * V * V));
+  }
+  fade.curves = {fitted};
+  r.plots = {fade};
+  r.fits.forward_fade = fit;
+  return r;
+}
+
 IdentifyResult identifyFlight(const FlightLog& log, const model::VehicleParams& base,
                               const IdentifyOptions& options) {
   DragFitOptions dopt;

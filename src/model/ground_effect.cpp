@@ -15,6 +15,7 @@ GroundEffectModel::GroundEffectModel(const VehicleParams& params)
     : mass_kg_(params.mass_kg),
       inertia_kgm2_(params.inertia_kgm2),
       min_height_m_(params.min_rotor_plane_height_m),
+      induced_velocity_sq_(params.forward_fade_induced_velocity_mps * params.forward_fade_induced_velocity_mps),
       thrust_(params.additional_thrust),
       leveling_(params.leveling_torque) {
   // The tables' vectors are not needed twice: the HeightTables own the knots.
@@ -83,6 +84,11 @@ Eigen::Matrix3d GroundEffectModel::levelingInertia(double h_m) const noexcept {
 
 Eigen::Vector3d GroundEffectModel::levelingInertiaDiagonal(double h_m) const noexcept {
   const double q = levelingInertiaIncrement(h_m);
+  return inertia_kgm2_ + Eigen::Vector3d(q, q, 0.0);
+}
+
+Eigen::Vector3d GroundEffectModel::levelingInertiaDiagonal(double h_m, double fade) const noexcept {
+  const double q = fade == 1.0 ? levelingInertiaIncrement(h_m) : fade * fade * levelingInertiaIncrement(h_m);
   return inertia_kgm2_ + Eigen::Vector3d(q, q, 0.0);
 }
 

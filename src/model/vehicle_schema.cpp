@@ -134,6 +134,12 @@ std::vector<S> groundEffectSpecs() {
                         return p.additional_thrust.table.values;
                       });
   F_G.note = "(dimensionless)";
+  // The ground effect's forward-flight fade (issue 13 item 2): optional, a file without it has
+  // none (the paper's model).
+  S fade = fitted("ground_effect.forward_fade.induced_velocity_mps", "m/s", {0.0, 100.0, kInclusive},
+                  [](P& p) -> double& { return p.forward_fade_induced_velocity_mps; });
+  fade.note = "(0: no fade)";
+  fade.optional = true;
 
   return {
       formula(kThrust, "ground_effect.additional_thrust.g1_m2", "m²", {0.0, 100.0, kExclusive},
@@ -160,6 +166,7 @@ std::vector<S> groundEffectSpecs() {
       curveColumn(kLeveling, kLevelingTable, "ground_effect.leveling_torque.table.M_G_m", "m",
                   {-1.0, 1.0, kInclusive},
                   [](P& p) -> std::vector<double>& { return p.leveling_torque.table.values; }),
+      fade,
   };
 }
 

@@ -269,3 +269,30 @@ TEST(FlatMap, FlagsRotorSpeedsBeyondTheThrottleCurve) {
 }
 
 }  // namespace
+
+namespace {
+
+// With a forward fade, the thrust of a steady level run is m·c/(1 + fade·F_G(h)); without one,
+// the map's numbers are bit for bit the paper's.
+TEST(FlatMap, ForwardFadeWeakensTheCushionWithSpeed) {
+  auto p = geaware_test::paperParams();
+  p.forward_fade_induced_velocity_mps = 8.26;
+  const geaware::model::VehicleModel fading(p);
+  const FlatMap faded(fading);
+  const FlatMap plain(paperVehicle());
+  FlatOutput run = hoverAt(0.15);
+  run.v_W = Eigen::Vector3d(4.0, 3.0, 0.0);  // 5 m/s, level, steady
+  const double h = 0.15;
+  const FlatState a = faded.evaluate(run, h);
+  const FlatState b = plain.evaluate(run, h);
+  ASSERT_TRUE(a.ok() && b.ok());
+  const double fade = 8.26 * 8.26 / (8.26 * 8.26 + 25.0);
+  const double F = fading.groundEffect().thrustRatio(h);
+  EXPECT_NEAR(a.thrust_N, p.mass_kg * a.collective_acc_mps2 / (1.0 + fade * F), 1e-12);
+  EXPECT_NEAR(b.thrust_N, p.mass_kg * b.collective_acc_mps2 / (1.0 + F), 1e-12);
+  EXPECT_GT(a.thrust_N, b.thrust_N);  // less cushion: more thrust to hold the height
+  // At rest the fade is 1: the same thrust bit for bit.
+  EXPECT_EQ(faded.evaluate(hoverAt(h), h).thrust_N, plain.evaluate(hoverAt(h), h).thrust_N);
+}
+
+}  // namespace

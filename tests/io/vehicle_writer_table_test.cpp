@@ -242,7 +242,8 @@ TEST_F(VehicleWriter, TablesAndFormulaKeysOfACurveReplaceEachOther) {
   ASSERT_EQ(u.entries().size(), 2u);
   EXPECT_EQ(u.entries()[1].key, kLeveling);
   // scalar keys keep their rules
-  EXPECT_EQ(VehicleUpdate::fittedKeys().size(), 18u);  // with the throttle curve's two voltage keys
+  EXPECT_EQ(VehicleUpdate::fittedKeys().size(), 19u);  // with the throttle curve's two voltage keys
+                                                       // and the forward fade's v_i
   EXPECT_THROW(u.set(kThrust, 1.0), std::invalid_argument);
 }
 

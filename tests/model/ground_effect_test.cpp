@@ -135,3 +135,29 @@ TEST(GroundEffect, ZeroGroundEffectParametersGiveThePlainModel) {
 }
 
 }  // namespace
+
+namespace {
+
+// The forward-flight fade (issue 13 item 2): v_i²/(v_i² + V²) of the horizontal speed, exactly 1
+// without a fade key (the paper's model, bit for bit) or at rest; J'(h) faded by fade².
+TEST(GroundEffect, ForwardFadeIsCheesemanBennettsAndOneWithoutIt) {
+  const GroundEffectModel plain(paperParams());
+  EXPECT_FALSE(plain.fades());
+  EXPECT_EQ(plain.forwardFade(Eigen::Vector3d(30.0, -40.0, 2.0)), 1.0);
+  auto p = paperParams();
+  p.forward_fade_induced_velocity_mps = 8.26;
+  const GroundEffectModel fading(p);
+  EXPECT_TRUE(fading.fades());
+  EXPECT_EQ(fading.forwardFade(Eigen::Vector3d(0.0, 0.0, -3.0)), 1.0);  // vertical speed: no fade
+  EXPECT_NEAR(fading.forwardFade(Eigen::Vector3d(3.0, 4.0, 1.0)), 8.26 * 8.26 / (8.26 * 8.26 + 25.0), 1e-15);
+  EXPECT_NEAR(fading.forwardFade(Eigen::Vector3d(8.26, 0.0, 0.0)), 0.5, 1e-15);  // half at V = v_i
+  for (double h : {0.072, 0.15, 0.4}) {
+    EXPECT_EQ(fading.levelingInertiaDiagonal(h, 1.0), fading.levelingInertiaDiagonal(h));
+    const double q = fading.levelingInertiaIncrement(h);
+    const Eigen::Vector3d J = fading.levelingInertiaDiagonal(h, 0.5);
+    EXPECT_NEAR(J.x(), p.inertia_kgm2.x() + 0.25 * q, 1e-15);
+    EXPECT_EQ(J.z(), p.inertia_kgm2.z());
+  }
+}
+
+}  // namespace

@@ -283,6 +283,11 @@ class Controller {
     bool have_last_w_ = false;
     double thrust_pi_integral_ = 0.0;
     double last_height_m_;
+    // The ground effect's forward-flight fade this tick (model::GroundEffectModel::forwardFade):
+    // at the reference's velocity (the feed-forward) and at the estimate's (what the DOB
+    // explains); exactly 1 without a fade in the vehicle file.
+    double fade_ref_ = 1.0;
+    double fade_est_ = 1.0;
     double ground_z_m_ = 0.0;  // ground elevation under the vehicle from the last valid height [m]
     bool have_ground_ = false;
     // Rotor-inertia yaw torque J_R·ṅ: the previous measured speeds (for ṅ) and the lag that

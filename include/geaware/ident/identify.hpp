@@ -15,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "geaware/ident/fade_fit.hpp"
 #include "geaware/ident/fits.hpp"
 #include "geaware/ident/rig_logs.hpp"
 #include "geaware/ident/vehicle_update.hpp"
@@ -101,6 +102,7 @@ struct Fits {
   std::optional<LevelingTableFit> leveling_table;
   std::optional<DragFit> drag;
   std::optional<HoverThrustFit> hover_thrust;  ///< hover out of ground effect: k_T alone
+  std::optional<ForwardFadeFit> forward_fade;  ///< flight near the ground at several speeds
   std::optional<CorrelationTable> correlations;
 };
 
@@ -141,6 +143,12 @@ struct IdentifyResult {
 /// radius and the k_T the log's external acceleration was computed with.
 [[nodiscard]] IdentifyResult identifyHover(const FlightLog& log, const model::VehicleParams& base,
                                            const IdentifyOptions& options = {});
+
+/// Flight near the ground at two or more speeds: the ground effect's forward-flight fade v_i
+/// (ident/fade_fit.hpp) against `base`'s F_G(h); --out merges
+/// ground_effect.forward_fade.induced_velocity_mps only.
+[[nodiscard]] IdentifyResult identifyForwardFade(const FlightLog& log, const model::VehicleParams& base,
+                                                 const IdentifyOptions& options = {});
 
 /// The platform log's Spearman rank-correlation table (no parameters, no update).
 [[nodiscard]] IdentifyResult identifyCorrelations(const PlatformLog& log,

@@ -60,6 +60,21 @@ class GroundEffectModel {
 
   /// Diagonal of J'(h) [kg·m²].
   [[nodiscard]] Eigen::Vector3d levelingInertiaDiagonal(double h_m) const noexcept;
+  /// Diagonal of J + fade²·diag(q, q, 0), J'(h) with the leveling torque faded in forward flight
+  /// (M_G scaled by `fade`, q ∝ M_G²); bit for bit levelingInertiaDiagonal(h) at fade 1 [kg·m²].
+  [[nodiscard]] Eigen::Vector3d levelingInertiaDiagonal(double h_m, double fade) const noexcept;
+
+  /// The ground effect's forward-flight fade v_i²/(v_i² + V²) at world velocity v_W, V its
+  /// horizontal speed (the speed in the rotor plane of a level vehicle), v_i the vehicle file's
+  /// forward_fade_induced_velocity_mps (Cheeseman & Bennett 1955): F_G and M_G are scaled by
+  /// it. Exactly 1 without a fade (v_i = 0) or at rest [-].
+  [[nodiscard]] double forwardFade(const Eigen::Vector3d& v_W) const noexcept {
+    if (!(induced_velocity_sq_ > 0.0)) return 1.0;
+    const double V_sq = v_W.x() * v_W.x() + v_W.y() * v_W.y();
+    return V_sq > 0.0 ? induced_velocity_sq_ / (induced_velocity_sq_ + V_sq) : 1.0;
+  }
+  /// Whether the model fades with speed (a forward-fade induced velocity is set).
+  [[nodiscard]] bool fades() const noexcept { return induced_velocity_sq_ > 0.0; }
 
   /// Whether F_G is a table (vehicle file `ground_effect.additional_thrust.table`), and its knots.
   [[nodiscard]] bool thrustIsTable() const noexcept { return !thrust_table_.empty(); }
@@ -72,6 +87,7 @@ class GroundEffectModel {
   double mass_kg_;
   Eigen::Vector3d inertia_kgm2_;
   double min_height_m_;
+  double induced_velocity_sq_ = 0.0;  ///< v_i² of the forward fade; 0: none [m²/s²]
   AdditionalThrustParams thrust_;
   LevelingTorqueParams leveling_;
   HeightTable thrust_table_;    ///< empty: the closed form

@@ -113,6 +113,10 @@ struct VehicleParams {
   ThrottleCurveParams throttle;
   AdditionalThrustParams additional_thrust;
   LevelingTorqueParams leveling_torque;
+  /// The ground effect's fade in forward flight (Cheeseman & Bennett 1955): F_G and M_G are
+  /// scaled by v_i²/(v_i² + V²), V the speed in the rotor plane, v_i the rotor's induced velocity
+  /// in hover (momentum theory, √(T/(2ρA)) per rotor) [m/s]. 0: no fade (the paper's model).
+  double forward_fade_induced_velocity_mps = 0.0;
   DragTableParams drag;
   RotorLayoutParams rotor_layout;  ///< optional in the file: the X layout, PX4's numbering
 
