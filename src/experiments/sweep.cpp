@@ -60,6 +60,7 @@ FlightScenario worldScenario(const SweepSpec& spec) {
   s.vehicle = spec.vehicle;
   applyWorld(s, spec.world);
   s.start_hover_s = spec.start_hover_s;
+  s.max_sim_s = spec.max_sim_s;
   return s;
 }
 

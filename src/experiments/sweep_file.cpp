@@ -158,7 +158,7 @@ Perturbation readCase(io::MapReader& m, FaultCase& fault) {
   return p;
 }
 
-SweepScenario readScenario(io::MapReader& m, const std::filesystem::path& base) {
+SweepScenario readScenario(io::MapReader& m, const std::filesystem::path& base, double max_sim_s) {
   SweepScenario s;
   const std::string type = m.choice("type", {"lemniscate", "file"});
   std::string default_name;
@@ -187,7 +187,7 @@ SweepScenario readScenario(io::MapReader& m, const std::filesystem::path& base) 
     if (!file.empty()) {
       try {
         // The scenario file gives the trajectory and the terrain; the rest is the sweep's.
-        const FlightScenario f = loadScenarioFile(resolve(base, file));
+        const FlightScenario f = loadScenarioFile(resolve(base, file), nullptr, max_sim_s);
         s.trajectory = f.trajectory;
         s.terrain = f.terrain;
       } catch (const std::exception& e) {
@@ -231,7 +231,7 @@ std::size_t SweepSpec::flights() const noexcept {
 }
 
 SweepSpec parseSweepYaml(std::string_view yaml_text, const std::string& source,
-                         const std::filesystem::path& base_dir) {
+                         const std::filesystem::path& base_dir, std::optional<double> max_sim_s_override) {
   YAML::Node doc;
   try {
     doc = YAML::Load(std::string(yaml_text));
@@ -254,6 +254,13 @@ SweepSpec parseSweepYaml(std::string_view yaml_text, const std::string& source,
       root.problem("start_hover_s", fmt::format("got {:g}, expected 0 … 60 s", s.start_hover_s));
     }
   }
+  if (root.has("max_sim_s")) {
+    s.max_sim_s = root.finiteNumber("max_sim_s");
+    if (std::isfinite(s.max_sim_s) && !(s.max_sim_s > 0.0 && s.max_sim_s <= 86400.0)) {
+      root.problem("max_sim_s", fmt::format("got {:g}, expected a duration in (0, 86400] s", s.max_sim_s));
+    }
+  }
+  if (max_sim_s_override) s.max_sim_s = *max_sim_s_override;
 
   auto seeds = root.map("seeds");
   s.first_seed = static_cast<std::uint64_t>(seeds.integer("first", 0, 1'000'000'000));
@@ -298,7 +305,7 @@ SweepSpec parseSweepYaml(std::string_view yaml_text, const std::string& source,
 
   auto scenario_items = root.maps("scenarios");
   if (checkCount(root, "scenarios", scenario_items.size(), kSweepMaxScenarios)) {
-    for (auto& m : scenario_items) s.scenarios.push_back(readScenario(m, base_dir));
+    for (auto& m : scenario_items) s.scenarios.push_back(readScenario(m, base_dir, s.max_sim_s));
     checkUnique(root, "scenarios", s.scenarios, [](const SweepScenario& c) { return c.name; });
   }
   root.rejectUnknownKeys();

@@ -60,7 +60,7 @@ std::vector<geaware::io::ConfigProblem> problemsOf(const std::string& text) {
 /// The one problem of `text`: at `line`, key `key`, the message containing `words`.
 void expectProblem(const std::string& text, int line, const std::string& key, const std::string& words) {
   const auto p = problemsOf(text);
-  ASSERT_EQ(p.size(), 1u) << (p.empty() ? "" : p[0].message);
+  ASSERT_EQ(p.size(), 1u) << (p.empty() ? "" : p[0].message) << (p.size() > 1 ? " | " + p[1].key + ": " + p[1].message : "");
   EXPECT_EQ(p[0].line, line);
   EXPECT_EQ(p[0].key, key);
   EXPECT_THAT(p[0].message, ::testing::HasSubstr(words));
@@ -148,6 +148,13 @@ TEST(SweepFile, ProblemsNameTheLineAndTheKey) {
   // A lemniscate that cannot be flown is refused at its item.
   expectProblem(replaced(t, "speed_mps: 0.5,", "speed_mps: -0.5,"), lineOf(t, "slow-high"), "scenarios[1].type",
                 "not a usable lemniscate");
+  // max_sim_s bounds every flight before any work: a flight longer than it is refused at its
+  // scenario, naming the durations; the value itself is range-checked.
+  expectProblem(replaced(t, "calibrate: false\n", "calibrate: false\nmax_sim_s: 12.5\n"), lineOf(t, "slow-high") + 1,
+                "scenarios[1]", "at most max_sim_s = 12.5 s");
+  expectProblem(replaced(t, "calibrate: false\n", "calibrate: false\nmax_sim_s: -1\n"), lineOf(t, "calibrate:") + 1,
+                "max_sim_s", "expected a duration in (0, 86400] s");
+  EXPECT_EQ(parse(replaced(t, "calibrate: false\n", "calibrate: false\nmax_sim_s: 600\n")).max_sim_s, 600.0);
 }
 
 TEST(SweepFile, ListSizesAndTheProductAreBoundedBeforeAnyWork) {

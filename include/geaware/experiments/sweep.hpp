@@ -55,6 +55,9 @@ struct SweepSpec {
   std::string world_reference;   ///< `world` as the file gives it ("default", a name, a path)
   bool calibrate = true;  ///< calibrateController in the unperturbed world (law cases: in theirs)
   double start_hover_s = 3.0;  ///< hover before the trajectory [s]
+  /// A flight that would simulate longer is refused before it starts (FlightScenario::max_sim_s;
+  /// file key max_sim_s) [s].
+  double max_sim_s = 3600.0;
   std::vector<Perturbation> cases;
   /// Aligned with `cases`: what a `fault:` item breaks (a case of the fault suite: faults
   /// mid-flight, a mass error, the IMU's ranges); an empty FaultCase for the others.
@@ -74,9 +77,11 @@ struct SweepSpec {
 /// than its limit or more than kSweepMaxFlights flights — or std::runtime_error when the file
 /// cannot be read.
 [[nodiscard]] SweepSpec loadSweepFile(const std::filesystem::path& file);
-/// Parses sweep YAML; `source` names it in errors, `base_dir` resolves relative paths.
+/// Parses sweep YAML; `source` names it in errors, `base_dir` resolves relative paths;
+/// `max_sim_s_override`, when given, replaces the file's max_sim_s (for its scenarios too).
 [[nodiscard]] SweepSpec parseSweepYaml(std::string_view yaml_text, const std::string& source,
-                                       const std::filesystem::path& base_dir);
+                                       const std::filesystem::path& base_dir,
+                                       std::optional<double> max_sim_s_override = {});
 
 /// One flight of a sweep, by index.
 struct SweepKey {
