@@ -80,7 +80,7 @@ ident::ColumnDefinitions columnDefinitions(const IdentifyOptions& opt) {
 /// the mapped channels on one time axis in ENU/FLU, a_ext computed by the paper's observer.
 /// Whether a mapped flight's rotor speeds come from the log's rotor speeds ("rpm") or its
 /// throttles ("throttle"): --rotor-speed, or with auto the map's rotor_speed when the log has it,
-/// else its throttle when the log has that. Throws std::runtime_error naming what is missing.
+/// else its throttle when the log has that, else "rpm" (mapFlight then names the fields missing).
 std::string rotorSpeedSource(const IdentifyOptions& opt, const io::LogData& data, const io::LogMap& map) {
   if (opt.rotor_speed != "auto") return opt.rotor_speed;
   if (io::logHasChannel(data, map, "rotor_speed")) return "rpm";

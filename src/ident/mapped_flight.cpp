@@ -2,6 +2,7 @@
 // A flight log from a mapped autopilot log, a_ext by the paper's observer (ident/rig_logs.hpp).
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
@@ -105,10 +106,18 @@ MappedFlightLog flightLogFromMapped(const io::MappedFlight& flight, double mass_
   }
   if (standing > 0) {
     char text[320];
-    std::snprintf(text, sizeof text,
-                  " samples standing on the ground (rotors turning at or within %.0f cm of the resting height "
-                  "%.3f m, or the IMU's vertical specific force per sum(n^2) over twice its value in flight): dropped",
-                  kGroundContactMarginM * 100.0, h_rest_m);
+    if (std::isfinite(h_rest_m)) {
+      std::snprintf(text, sizeof text,
+                    " samples standing on the ground (rotors turning at or within %.0f cm of the resting height "
+                    "%.3f m, or the IMU's vertical specific force per sum(n^2) over twice its value in flight): "
+                    "dropped",
+                    kGroundContactMarginM * 100.0, h_rest_m);
+    } else {
+      std::snprintf(text, sizeof text,
+                    " samples held up by the ground (the IMU's vertical specific force per sum(n^2) over twice its "
+                    "value in flight; less than %.0f s of them, so no resting height): dropped",
+                    kMinRestingS);
+    }
     out.notes.push_back(std::to_string(standing) + " of " + std::to_string(n) + text);
   }
   return out;
