@@ -99,7 +99,7 @@ ident::FlightLog readMappedFlight(const IdentifyOptions& opt, const model::Vehic
   std::vector<std::string> wanted = {"height", "specific_force", "attitude"};
   if (!opt.hover) wanted.emplace_back("velocity");
   std::vector<std::string> asked = wanted;
-  for (const char* c : {"rotor_speed", "throttle", "battery_voltage"}) asked.emplace_back(c);
+  for (const char* c : {"rotor_speed", "throttle", "armed", "battery_voltage"}) asked.emplace_back(c);
   // Only the mapped topics are decoded, unless a channel names none (its fields are looked up
   // in every topic) or --column/--const may name any.
   io::LogReadOptions read;
@@ -122,9 +122,16 @@ ident::FlightLog readMappedFlight(const IdentifyOptions& opt, const model::Vehic
                        "columns; the built-in paper quadrotor's curve is not taken for another vehicle)");
     }
     wanted.emplace_back("throttle");
-    // With the voltage when the map has it: the curve uses it, or the conversion warns that
-    // the curve cannot (io::mapFlight leaves out an optional channel the log lacks).
-    if (map.channels.count("battery_voltage") > 0) wanted.emplace_back("battery_voltage");
+    // The voltage only when the curve uses it (a battery logged slower or with gaps would
+    // otherwise cost rows); a log that has it for a curve without a voltage dependence is said.
+    if (base.throttle.reference_voltage_V > 0.0) {
+      if (map.channels.count("battery_voltage") > 0) wanted.emplace_back("battery_voltage");
+    } else if (io::logHasChannel(data, map, "battery_voltage")) {
+      std::cerr << "geaware: warning: " << opt.log << ": the log has the battery voltage but the vehicle's throttle "
+                << "curve has no voltage dependence (throttle_curve.reference_voltage_V = 0; `identify rotor` with "
+                << "a voltage column fits it): a sagging battery reads as lost lift\n";
+    }
+    if (map.channels.count("armed") > 0 && io::logHasChannel(data, map, "armed")) wanted.emplace_back("armed");
   } else {
     wanted.emplace_back("rotor_speed");
   }
@@ -295,6 +302,10 @@ int runIdentify(const IdentifyOptions& opt) {
   }
   if (opt.rotor_speed != "auto" && opt.map.empty()) {
     throw UsageError("--rotor-speed: chooses between a log map's rotor_speed and throttle channels; give --map");
+  }
+  if (opt.fade && opt.vehicle.empty()) {
+    throw UsageError("--fade: the fade is fitted against the vehicle's F_G(h): --vehicle FILE (the built-in paper "
+                     "quadrotor's curve is not taken for another vehicle)");
   }
   if (opt.rotor_speed == "throttle" && opt.vehicle.empty()) {
     throw UsageError("--rotor-speed throttle: rotor speeds from throttles need the vehicle's throttle curve: --vehicle "

@@ -117,7 +117,7 @@ bool durationBounded(const FlightScenario& s, std::vector<ScenarioProblem>& out)
   out.push_back({"trajectory",
                  "a flight of " + show(sim_s) + " s (start hover " + show(s.start_hover_s) + " s + trajectory " +
                      show(trajectory_s) + " s + settling " + show(s.settle_s) + " s)",
-                 "at most max_sim_s = " + show(s.max_sim_s) + " s (fly --max-sim-s, scenario key max_sim_s)"});
+                 "at most max_sim_s = " + show(s.max_sim_s) + " s (fly --max-sim-s, scenario or sweep key max_sim_s)"});
   return false;
 }
 

@@ -73,8 +73,11 @@ FlightScenario calibratedBase(const SweepSpec& spec, const Perturbation* own) {
   }
   CalibrationSweeps sweeps = CalibrationSweeps::defaults();
   sweeps.flight_controller = control::applyParameters(sweeps.flight_controller, spec.controller_values);
+  // The sweep's max_sim_s bounds its own flights, not the calibration's hover and drag flights.
+  FlightScenario calibration_world = world;
+  calibration_world.max_sim_s = FlightScenario{}.max_sim_s;
   const ControllerCalibration c =
-      calibrateController(spec.vehicle, {world, spec.world.team_scale_error_std_kg}, sweeps);
+      calibrateController(spec.vehicle, {calibration_world, spec.world.team_scale_error_std_kg}, sweeps);
   FlightScenario base = world;
   base.vehicle = c.vehicle;
   base.eskf = c.estimator;

@@ -259,6 +259,8 @@ SweepSpec parseSweepYaml(std::string_view yaml_text, const std::string& source,
     if (std::isfinite(s.max_sim_s) && !(s.max_sim_s > 0.0 && s.max_sim_s <= 86400.0)) {
       root.problem("max_sim_s", fmt::format("got {:g}, expected a duration in (0, 86400] s", s.max_sim_s));
     }
+    // A refused value is reported once: the scenarios are read under the default.
+    if (!(std::isfinite(s.max_sim_s) && s.max_sim_s > 0.0 && s.max_sim_s <= 86400.0)) s.max_sim_s = SweepSpec{}.max_sim_s;
   }
   if (max_sim_s_override) s.max_sim_s = *max_sim_s_override;
 

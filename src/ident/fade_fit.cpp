@@ -99,6 +99,7 @@ ForwardFadeFit fitForwardFade(const FlightLog& log, const model::VehicleParams& 
   } else {
     out.induced_velocity_mps = {kNaN, kNaN};
   }
+  const char* const names[] = {"k_T", "s", "w", "c_TL"};
   for (const int k : fit.at_bound) {
     if (k == 2 && !(w > 0.0)) {
       out.blocking.push_back("no forward-flight fade in the data: w = 1/v_i^2 ended at 0 (the cushion does not weaken "
@@ -106,9 +107,11 @@ ForwardFadeFit fitForwardFade(const FlightLog& log, const model::VehicleParams& 
     } else if (k == 1) {
       out.blocking.push_back("the cushion scale s = " + num(out.cushion_scale.value) +
                              " ended at a bound of [0, 10]: the log shows no ground cushion to fade");
-    } else {
-      detail::blockAtBounds(out.blocking, fit, problem, {"k_T", "s", "w", "c_TL"}, "fit of the forward-flight fade");
-      break;
+    } else if (k >= 0 && k < 4) {
+      const auto i = static_cast<std::size_t>(k);
+      out.blocking.push_back(std::string(names[i]) + " = " + num(fit.x(k)) + " ended at its bound (allowed [" +
+                             num(problem.lower[i]) + ", " + num(problem.upper[i]) +
+                             "]) in the fit of the forward-flight fade: the value is the bound, not a fit");
     }
   }
   // No fade (w = 0) is the paper's model: a fade is adopted only when the data tell it from none

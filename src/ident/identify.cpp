@@ -130,7 +130,6 @@ IdentifyResult identifyRotorStand(const RotorStandLog& log, const IdentifyOption
 
 namespace {
 
-/// A hover that never came within kHoverGroundEffectRadii rotor radii of the ground: k_T alone.
 /// Fewer samples out of ground effect than this do not give k_T alone in place of a failed F_G fit.
 constexpr std::size_t kMinHoverKTSamples = 10;
 
@@ -152,6 +151,7 @@ FlightLog rowsAtOrAbove(const FlightLog& log, double h_m) {
   return out;
 }
 
+/// A hover that never came within kHoverGroundEffectRadii rotor radii of the ground: k_T alone.
 IdentifyResult hoverKTAlone(const FlightLog& log, const model::VehicleParams& base,
                             const IdentifyOptions& options, double reach_m) {
   const HoverThrustFit fit = fitHoverThrustOutOfGroundEffect(log, base.mass_kg, base.rotor.k_T_N_per_rpm2,

@@ -24,6 +24,10 @@ MappedFlightLog flightLogFromMapped(const io::MappedFlight& flight, double mass_
   need(flight.h_m.size() == n, "height");
   need(flight.f_B_mps2[0].size() == n, "specific force");
   need(flight.q_WB[0].size() == n, "attitude");
+  if (!flight.n_rpm.empty() && flight.n_rpm.size() != 4) {
+    throw std::invalid_argument(flight.source + ": the map gives " + std::to_string(flight.n_rpm.size()) +
+                                " rotors; the flight fits are for a quadrotor's 4");
+  }
   need(flight.n_rpm.size() == 4 && flight.n_rpm[0].size() == n, "rotor speeds of 4 rotors");
   if (!(mass_kg > 0.0) || !(k_T_N_per_rpm2 > 0.0)) {
     throw std::invalid_argument("flightLogFromMapped: mass and k_T must be positive");
@@ -134,11 +138,14 @@ ThrottleConversion rotorSpeedsFromThrottle(io::MappedFlight& flight, const model
   const model::ThrottleCurve speed(curve);
   const bool with_voltage = curve.reference_voltage_V > 0.0 && flight.vbat_V.size() == n;
   ThrottleConversion out;
-  std::size_t above = 0, stopped = 0;
+  std::size_t above = 0, stopped = 0, gaps = 0, disarmed = 0;
+  const bool with_armed = flight.armed.size() == n;
+  for (std::size_t i = 0; i < n && with_voltage; ++i) gaps += std::isnan(flight.vbat_V[i]) ? 1 : 0;
+  for (std::size_t i = 0; i < n && with_armed; ++i) disarmed += flight.armed[i] < 0.5 ? 1 : 0;
   flight.n_rpm.assign(flight.throttle.size(), std::vector<double>(n, 0.0));
   for (std::size_t r = 0; r < flight.throttle.size(); ++r) {
     for (std::size_t i = 0; i < n; ++i) {
-      const double t = flight.throttle[r][i];
+      const double t = with_armed && flight.armed[i] < 0.5 ? io::kStoppedThrottle : flight.throttle[r][i];
       if (!(t >= 0.0)) {  // io::kStoppedThrottle
         ++stopped;
         continue;
@@ -168,6 +175,14 @@ ThrottleConversion rotorSpeedsFromThrottle(io::MappedFlight& flight, const model
     out.warnings.push_back("the log has the battery voltage but the vehicle's throttle curve has no voltage "
                            "dependence (throttle_curve.reference_voltage_V = 0; `identify rotor` with a voltage column "
                            "fits it): a sagging battery reads as lost lift");
+  }
+  if (with_voltage && gaps > 0) {
+    out.notes.push_back(std::to_string(gaps) + " samples without a battery voltage (a gap in its log): the curve at "
+                        "its reference voltage there");
+  }
+  if (disarmed > 0) {
+    out.notes.push_back(std::to_string(disarmed) + " of " + std::to_string(n) +
+                        " samples disarmed (the map's armed channel below 0.5): every motor stopped");
   }
   if (above > 0) {
     out.warnings.push_back(std::to_string(above) + " throttle values above 1 taken as 1 (the map's range may be wrong)");

@@ -141,7 +141,7 @@ std::vector<std::string> mappedColumnNames() {
           "vy_mps",       "vz_mps",   "n1_rpm",   "n2_rpm",   "n3_rpm",       "n4_rpm",
           "n5_rpm",       "n6_rpm",   "n7_rpm",   "n8_rpm",   "throttle1",    "throttle2",
           "throttle3",    "throttle4", "throttle5", "throttle6", "throttle7",   "throttle8",
-          "vbat_V"};
+          "armed",        "vbat_V"};
 }
 
 namespace {
@@ -163,6 +163,7 @@ Slot slotOf(const std::string& name) {
        {"n1_rpm", "n2_rpm", "n3_rpm", "n4_rpm", "n5_rpm", "n6_rpm", "n7_rpm", "n8_rpm"}},
       {"throttle",
        {"throttle1", "throttle2", "throttle3", "throttle4", "throttle5", "throttle6", "throttle7", "throttle8"}},
+      {"armed", {"armed"}},
       {"battery_voltage", {"vbat_V"}}};
   for (const auto& [channel, names] : channels) {
     const auto it = std::find(names.begin(), names.end(), name);

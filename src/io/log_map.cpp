@@ -30,6 +30,7 @@ const std::vector<ChannelSpec>& channelSpecs() {
       {"velocity", 3, 3, {"world"}, {{"m/s", 1.0}, {"mm/s", 1e-3}, {"cm/s", 1e-2}}},
       {"rotor_speed", 1, 8, {"scalar"}, {{"rpm", 1.0}, {"rad/s", 9.549296585513721}}},
       {"throttle", 1, 8, {"scalar"}, {}},  // scaled by its range, not by a unit
+      {"armed", 1, 1, {"scalar"}, {}},     // 1 armed, 0 disarmed (every motor stopped)
       {"battery_voltage", 1, 1, {"scalar"}, {{"V", 1.0}, {"mV", 1e-3}}},
   };
   return specs;

@@ -249,6 +249,7 @@ const std::vector<double> kNoAxis;  // a constant's (never read)
 void store(const std::string& name, const std::vector<double>& r, MappedFlight& out) {
   if (name == "height") out.h_m.push_back(r[0]);
   if (name == "battery_voltage") out.vbat_V.push_back(r[0]);
+  if (name == "armed") out.armed.push_back(r[0]);
   for (std::size_t i = 0; i < 3 && r.size() >= 3; ++i) {
     if (name == "specific_force") out.f_B_mps2[i].push_back(r[i]);
     if (name == "gyro") out.gyro_B_radps[i].push_back(r[i]);
@@ -346,14 +347,15 @@ MappedFlight mapFlight(const LogData& log, const LogMap& map, const std::vector<
       char text[64];
       std::snprintf(text, sizeof text, "%.4g Hz", rate);
       out.notes.push_back(s.name + ": " + topicName(*t) + ", " + std::to_string(t->size()) + " samples at " + text);
-      if (rate < kMinFitRateHz && s.name != "battery_voltage") {
+      const bool slow_is_fine = s.name == "battery_voltage" || s.name == "armed";
+      if (rate < kMinFitRateHz && !slow_is_fine) {
         out.warnings.push_back(s.name + " (" + topicName(*t) + ") is logged at " + text + ", slower than the " +
                                std::to_string(static_cast<int>(kMinFitRateHz)) +
                                " Hz a fit of the vehicle's motion needs: the fit runs on its samples only");
       }
-      // The battery voltage changes over minutes: a slow battery topic is interpolated, not made
-      // the time base (unless it is the only one).
-      if (s.name == "battery_voltage" && series.size() > 1) continue;
+      // The battery voltage changes over minutes and the arming state is logged when it changes:
+      // such topics are interpolated (the arming state held), never the time base (unless alone).
+      if (slow_is_fine && series.size() > 1) continue;
       if (base == nullptr || rate < rateOf(axes.of(*base))) base = t;
     }
   }
@@ -384,8 +386,12 @@ MappedFlight mapFlight(const LogData& log, const LogMap& map, const std::vector<
           ok = false;
           break;
         }
-        row[k][f] = interpolate(cursors[k][f].t, part.values, at, t, s.spec->frame == "euler" ? 2.0 * M_PI : 0.0);
-        finite = finite && std::isfinite(row[k][f]);
+        // The arming state holds its last logged value; the rest is linear.
+        row[k][f] = s.name == "armed" ? (t >= cursors[k][f].t[at + 1] ? part.values[at + 1] : part.values[at])
+                                      : interpolate(cursors[k][f].t, part.values, at, t,
+                                                    s.spec->frame == "euler" ? 2.0 * M_PI : 0.0);
+        // A gap in the battery voltage is kept as NaN (its user counts it), not a dropped row.
+        finite = finite && (std::isfinite(row[k][f]) || s.name == "battery_voltage");
       }
       if (!ok) break;
       if (s.spec->frame == "quaternion") {

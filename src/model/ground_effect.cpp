@@ -88,7 +88,10 @@ Eigen::Vector3d GroundEffectModel::levelingInertiaDiagonal(double h_m) const noe
 }
 
 Eigen::Vector3d GroundEffectModel::levelingInertiaDiagonal(double h_m, double fade) const noexcept {
-  const double q = fade == 1.0 ? levelingInertiaIncrement(h_m) : fade * fade * levelingInertiaIncrement(h_m);
+  if (fade == 1.0) return levelingInertiaDiagonal(h_m);
+  // q = m·[fade·M_G/(1 + fade·F_G)]²: both the leveling torque and the hover thrust's cushion fade.
+  const double mg = fade * levelingCoefficient(h_m) / (1.0 + fade * thrustRatio(h_m));
+  const double q = mass_kg_ * mg * mg;
   return inertia_kgm2_ + Eigen::Vector3d(q, q, 0.0);
 }
 

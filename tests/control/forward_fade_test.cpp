@@ -65,6 +65,13 @@ TEST(ForwardFade, TheControllerFadesTheCushionWithTheReferencesSpeed) {
   EXPECT_NEAR(c.thrust_des_N, m * kGravity / (1.0 + F), 0.02);
   EXPECT_NEAR(d.thrust_des_N, m * kGravity / (1.0 + fade * F), 0.02);
   EXPECT_GT(d.thrust_des_N - c.thrust_des_N, 0.1);  // 0.46 N more at 0.15 m: the cushion is weaker
+  // The feed-forward fades with the reference's speed, not the estimate's: the estimate at rest
+  // and the reference at 5 m/s give the faded command.
+  faded.reset();
+  ControllerInput still = run(h, 5.0);
+  still.estimate.v_W.setZero();
+  const ControllerOutput e = faded.update(still);
+  EXPECT_NEAR(e.thrust_des_N, m * kGravity / (1.0 + fade * F), 0.02);
 }
 
 }  // namespace

@@ -266,11 +266,30 @@ TEST(LogMapThrottle, PX4NaNIsAStoppedMotorAndZeroAnIdleOne) {
                                                   {"control[3]", 0.4}});
   motors.channels[0].values[3] = std::nan("");
   log.topics.push_back(motors);
-  const auto f = geaware::io::mapFlight(log, map, {"height", "throttle"});
-  ASSERT_EQ(f.size(), 5u);  // the NaN is a value, not a gap
+  // actuator_armed, logged when it changes: disarmed at 10.0 s, armed from 10.25 s.
+  auto armed = topic("actuator_armed", 0.25, 3, {{"armed", 0.0}});
+  armed.time_s = {10.0, 10.25, 10.4};
+  armed.channels[0].values = {0.0, 1.0, 1.0};
+  log.topics.push_back(armed);
+  auto f = geaware::io::mapFlight(log, map, {"height", "throttle", "armed"});
+  ASSERT_EQ(f.size(), 5u);  // the NaN is a value, not a gap; the slow arming state is no time base
+  EXPECT_EQ(f.time_base, "vehicle_local_position[0]");
   EXPECT_DOUBLE_EQ(f.throttle[0][0], 0.0);
   EXPECT_DOUBLE_EQ(f.throttle[0][3], geaware::io::kStoppedThrottle);
   EXPECT_DOUBLE_EQ(f.throttle[1][3], 0.4);
+  // Held, not interpolated: 0 at 10.1 and 10.2 s, 1 from 10.25 s (10.3, 10.4 s).
+  EXPECT_EQ(f.armed, (std::vector<double>{0.0, 0.0, 0.0, 1.0, 1.0}));
+  // Through the curve: every motor stopped where disarmed, the idle motor at √c0 where armed.
+  geaware::model::ThrottleCurveParams curve;
+  curve.c1_rpm2 = 4e8, curve.c0_rpm2 = 1e6;
+  const auto r = geaware::ident::rotorSpeedsFromThrottle(f, curve);
+  for (std::size_t m = 0; m < 4; ++m) EXPECT_EQ(f.n_rpm[m][2], 0.0);
+  EXPECT_DOUBLE_EQ(f.n_rpm[1][4], std::sqrt(4e8 * 0.4 + 1e6));
+  EXPECT_DOUBLE_EQ(f.n_rpm[0][4], 1000.0);  // armed at 0: idle
+  EXPECT_EQ(f.n_rpm[0][3], 0.0);           // NaN: stopped although armed
+  bool said = false;
+  for (const auto& n : r.notes) said = said || n.find("3 of 5 samples disarmed") != std::string::npos;
+  EXPECT_TRUE(said);
 }
 
 TEST(LogMapThrottle, BadRangesAreNamed) {
@@ -369,16 +388,18 @@ TEST(LogMap, CrazyflieCsvWithPwmOnlyAndGaps) {
   const auto file = dir / "cf_pwm.csv";
   {
     std::ofstream out(file);
-    out << "Timestamp,stateEstimate.z,pwm.m1_pwm,pwm.m2_pwm,pwm.m3_pwm,pwm.m4_pwm,unused\n";
+    out << "Timestamp,stateEstimate.z,pwm.m1_pwm,pwm.m2_pwm,pwm.m3_pwm,pwm.m4_pwm,unused,pm.vbatMV\n";
     for (int i = 0; i < 30; ++i) {
       out << 1000 + 10 * i << "," << (i == 7 ? std::string() : "0.3") << ",32767.5,0,65535,13107,"
-          << (i % 2 == 0 ? "-inf" : "") << "\n";
+          << (i % 2 == 0 ? "-inf" : "") << "," << (i == 12 ? std::string() : "3900") << "\n";
     }
   }
   const auto log = geaware::io::readLog(file);
   const auto map = geaware::io::loadLogMap("crazyflie");
-  const auto f = geaware::io::mapFlight(log, map, {"height", "throttle"});
-  ASSERT_EQ(f.size(), 29u);
+  const auto f = geaware::io::mapFlight(log, map, {"height", "throttle", "battery_voltage"});
+  ASSERT_EQ(f.size(), 29u);  // the height's gap drops its row; the battery's is kept as NaN
+  EXPECT_TRUE(std::isnan(f.vbat_V[11]));  // row 12 of the file, after the dropped row 7
+  EXPECT_DOUBLE_EQ(f.vbat_V[10], 3.9);
   EXPECT_DOUBLE_EQ(f.throttle[0][0], 0.5);                           // m1: rotor 1
   EXPECT_DOUBLE_EQ(f.throttle[3][0], geaware::io::kStoppedThrottle);  // m2 at 0: rotor 4, stopped
   EXPECT_DOUBLE_EQ(f.throttle[1][0], 1.0);                           // m3: rotor 2

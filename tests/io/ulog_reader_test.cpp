@@ -347,8 +347,15 @@ TEST(ULogReader, DropoutsAreKeptWithTheirTimeAndDuration) {
   EXPECT_NE(text.find("2 dropouts"), std::string::npos) << text;
   EXPECT_NE(text.find("dropout at t = 0.010 s for 0.25 s"), std::string::npos) << text;
   // A dropout message of the wrong size is an error at its offset, not a value read past it.
+  const std::uint64_t offset = b.size();
   message(b, 'O', "x");
-  EXPECT_THROW((void)readULog(b, "short-dropout.ulg"), LogError);
+  try {
+    (void)readULog(b, "short-dropout.ulg");
+    FAIL() << "no error";
+  } catch (const LogError& e) {
+    EXPECT_TRUE(e.hasOffset());
+    EXPECT_EQ(e.offset(), offset) << e.what();
+  }
 }
 
 }  // namespace

@@ -139,7 +139,7 @@ TEST(GroundEffect, ZeroGroundEffectParametersGiveThePlainModel) {
 namespace {
 
 // The forward-flight fade (issue 13 item 2): v_i²/(v_i² + V²) of the horizontal speed, exactly 1
-// without a fade key (the paper's model, bit for bit) or at rest; J'(h) faded by fade².
+// without a fade key (the paper's model, bit for bit) or at rest; J'(h) with M_G and F_G faded.
 TEST(GroundEffect, ForwardFadeIsCheesemanBennettsAndOneWithoutIt) {
   const GroundEffectModel plain(paperParams());
   EXPECT_FALSE(plain.fades());
@@ -153,9 +153,11 @@ TEST(GroundEffect, ForwardFadeIsCheesemanBennettsAndOneWithoutIt) {
   EXPECT_NEAR(fading.forwardFade(Eigen::Vector3d(8.26, 0.0, 0.0)), 0.5, 1e-15);  // half at V = v_i
   for (double h : {0.072, 0.15, 0.4}) {
     EXPECT_EQ(fading.levelingInertiaDiagonal(h, 1.0), fading.levelingInertiaDiagonal(h));
-    const double q = fading.levelingInertiaIncrement(h);
+    // q = m·[fade·M_G/(1 + fade·F_G)]² at fade 0.5 (the hover thrust's cushion fades too).
+    const double mg = 0.5 * fading.levelingCoefficient(h) / (1.0 + 0.5 * fading.thrustRatio(h));
     const Eigen::Vector3d J = fading.levelingInertiaDiagonal(h, 0.5);
-    EXPECT_NEAR(J.x(), p.inertia_kgm2.x() + 0.25 * q, 1e-15);
+    EXPECT_NEAR(J.x(), p.inertia_kgm2.x() + p.mass_kg * mg * mg, 1e-15);
+    EXPECT_GT(J.x(), p.inertia_kgm2.x() + 0.25 * fading.levelingInertiaIncrement(h));
     EXPECT_EQ(J.z(), p.inertia_kgm2.z());
   }
 }

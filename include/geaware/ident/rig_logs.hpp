@@ -179,8 +179,9 @@ inline constexpr double kMinRestingS = 1.0;
 /// each) through the vehicle's ESC throttle curve and, when the curve has a voltage dependence
 /// (reference_voltage_V > 0), the logged battery voltage: n_i = model::ThrottleCurve::speedRpm(
 /// t_i, V) (docs/identification.md, "Vehicles without rotor-speed telemetry"). A stopped motor
-/// (io::kStoppedThrottle, any negative throttle) turns at 0 rpm; a throttle above 1 is taken as 1
-/// and counted. The curve gives
+/// (io::kStoppedThrottle, any negative throttle) turns at 0 rpm, and so does every motor where the
+/// flight is disarmed (flight.armed below 0.5, when mapped); a throttle above 1 is taken as 1 and
+/// counted; a gap in the voltage (NaN) takes the curve at its reference voltage, counted. The curve gives
 /// steady speeds: a motor's lag (tens of ms) is not modelled, so fast throttle changes add noise.
 /// Fills flight.n_rpm and flight.rotor_fields. Throws std::invalid_argument when the flight has
 /// no throttles or the curve is not a curve (c2, c1, c0 all 0).

@@ -77,8 +77,8 @@ struct LogMap {
   /// to seconds (`time: {field: timestamp, unit: ms}`); empty: the reader's time axes.
   std::string time_field;
   double time_scale = 1.0;
-  /// height, specific_force, gyro, attitude, velocity, rotor_speed, throttle, battery_voltage
-  /// (any subset).
+  /// height, specific_force, gyro, attitude, velocity, rotor_speed, throttle, armed,
+  /// battery_voltage (any subset).
   std::map<std::string, MappedChannel> channels;
 };
 
@@ -134,7 +134,9 @@ struct MappedFlight {
   /// when asked for.
   std::vector<std::vector<double>> throttle;
   std::vector<std::string> throttle_fields;         ///< the log field of each rotor (throttle's order)
-  std::vector<double> vbat_V;
+  /// Arming state, 1 armed and 0 disarmed (interpolated: below 0.5 is disarmed), when asked for.
+  std::vector<double> armed;
+  std::vector<double> vbat_V;             ///< NaN where the battery's log has a gap (the row is kept)
   std::vector<std::string> notes;        ///< rates, time base, rows dropped
   /// Channels logged slower than kMinFitRateHz (each named with its rate).
   std::vector<std::string> warnings;

@@ -60,8 +60,9 @@ class GroundEffectModel {
 
   /// Diagonal of J'(h) [kg·m²].
   [[nodiscard]] Eigen::Vector3d levelingInertiaDiagonal(double h_m) const noexcept;
-  /// Diagonal of J + fade²·diag(q, q, 0), J'(h) with the leveling torque faded in forward flight
-  /// (M_G scaled by `fade`, q ∝ M_G²); bit for bit levelingInertiaDiagonal(h) at fade 1 [kg·m²].
+  /// Diagonal of J'(h) with the ground effect faded in forward flight: M_G and F_G scaled by
+  /// `fade`, q = m·[fade·M_G/(1 + fade·F_G)]²; bit for bit levelingInertiaDiagonal(h) at fade 1
+  /// [kg·m²].
   [[nodiscard]] Eigen::Vector3d levelingInertiaDiagonal(double h_m, double fade) const noexcept;
 
   /// The ground effect's forward-flight fade v_i²/(v_i² + V²) at world velocity v_W, V its
