@@ -166,7 +166,10 @@ TEST(Recommended, SurvivesAPayloadThePapersControllerDoesNotKnowAbout) {
 
 TEST(Recommended, ItsGuardNeverActsInTheUnperturbedWorld) {
   for (std::uint64_t seed : {1, 2, 3}) {
-    for (const auto& [h, v] : {std::pair{0.12, 1.0}, std::pair{0.18, 3.0}}) {
+    for (const auto& hv : {std::pair{0.12, 1.0}, std::pair{0.18, 3.0}}) {
+      // Plain copies, not a structured binding: clang 14 does not capture bindings in a lambda.
+      const double h = hv.first;
+      const double v = hv.second;
       FlightScenario s = recommendedAt(h, v);
       if (v > 2.0) s.trajectory = std::make_shared<traj::Lemniscate>([&] {
         traj::LemniscateParams p;

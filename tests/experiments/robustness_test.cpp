@@ -9,7 +9,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -23,7 +22,6 @@
 namespace geaware::experiments {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// Every number of the world a cell could touch (the truth, the sensors, the disturbances), by
 /// name: a cell must change exactly its own.
