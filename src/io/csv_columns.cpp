@@ -6,9 +6,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 
 #include "geaware/io/column_expression.hpp"
 #include "geaware/io/csv_reader.hpp"
+#include "geaware/io/log_channels.hpp"
 #include "text.hpp"
 
 namespace geaware::io::detail {
@@ -202,3 +205,46 @@ CsvTable readCsvDefined(const std::filesystem::path& file, const CsvReadOptions&
 }
 
 }  // namespace geaware::io::detail
+
+namespace geaware::io {
+
+namespace detail {
+// log_columns.cpp: readCsv on a log that is not CSV (.mat, ULog, DataFlash, Crazyflie uSD).
+CsvTable readLogColumns(const std::filesystem::path& file, const CsvReadOptions& options);
+}  // namespace detail
+
+// The whole-table reader: the columns asked for, row by row through CsvReader (csv_reader.cpp),
+// with column definitions (readCsvDefined above), or from a log in another format.
+CsvTable readCsv(const std::filesystem::path& file, const CsvReadOptions& options) {
+  // A log in another format identify flight reads (a .mat file, say): the same columns from the
+  // fields of one of its topics. A file that cannot be opened is the CSV reader's to report.
+  if (std::ifstream(file).good() && detectLogFormat(file) != LogFormat::kCsv) return detail::readLogColumns(file, options);
+  if (!options.definitions.empty()) return detail::readCsvDefined(file, options);
+  CsvReader reader(file, options);
+  CsvTable table;
+  table.source = reader.source();
+  for (const auto& c : options.columns) table.names.push_back(c.name);
+  table.columns.resize(options.columns.size());
+  // Reserve from the file size once the first rows show the bytes per row: avoids regrowth
+  // (and the transient doubling of memory it costs) for large logs.
+  std::error_code ec;
+  const auto file_bytes = std::filesystem::file_size(file, ec);
+  constexpr std::size_t kProbeRows = 4096;
+  std::vector<double> row(options.columns.size());
+  std::size_t data_start = 0;
+  while (reader.next(row)) {
+    if (table.columns.front().empty()) {
+      table.first_data_line = reader.line();
+      data_start = reader.bytesRead();
+    }
+    if (table.columns.front().size() == kProbeRows && !ec && reader.bytesRead() > data_start) {
+      const double per_row = static_cast<double>(reader.bytesRead() - data_start) / (kProbeRows - 1);
+      const auto guess = static_cast<std::size_t>(1.02 * static_cast<double>(file_bytes) / per_row) + 16;
+      for (auto& c : table.columns) c.reserve(guess);
+    }
+    for (std::size_t k = 0; k < row.size(); ++k) table.columns[k].push_back(row[k]);
+  }
+  return table;
+}
+
+}  // namespace geaware::io
