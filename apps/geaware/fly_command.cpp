@@ -43,6 +43,8 @@ struct FlyOptions {
   double extent_y_m = 0.8;
   int laps = 1;
   double from_height_m = 1.5;
+  double touchdown_speed_mps = 0.1;
+  double flare_height_m = 0.3;
   std::uint64_t seed = 1;
   bool seed_given = false;  ///< --seed on the command line (it then replaces a scenario file's)
   bool no_turbulence = false;
@@ -75,6 +77,9 @@ const CLI::Validator kControllerSpec(
 experiments::TrajectoryOptions flightPlan(const FlyOptions& o) {
   experiments::TrajectoryOptions p;
   p.lemniscate = o.trajectory == "lemniscate";
+  if (!p.lemniscate) p.kind = o.trajectory;
+  p.touchdown_speed_mps = o.touchdown_speed_mps;
+  p.flare_height_m = o.flare_height_m;
   p.height_m = o.height_m;
   p.speed_mps = o.speed_mps;
   p.extent_x_m = o.extent_x_m;
@@ -102,7 +107,12 @@ experiments::FlightScenario scenarioOf(const FlyOptions& o) {
     experiments::applyWorld(
         s, world ? *world : experiments::defaultWorld(s.vehicle, o.vehicle.empty(), o.vehicle));
     (void)parseController(o.controller, s.controller);  // checked by kControllerSpec
-    s.trajectory = experiments::makeTrajectory(flightPlan(o));
+    experiments::TrajectoryOptions plan = flightPlan(o);
+    // Landing and take-off: the gear holds the rotor plane at the vehicle file's lowest height
+    // above the default flat ground at z = 0.
+    plan.touchdown_height_m = s.vehicle.min_rotor_plane_height_m;
+    s.trajectory = experiments::makeTrajectory(plan);
+    experiments::applyTouchdown(plan, s);
     s.seed = o.seed;
     if (o.no_turbulence) s.disturbances.turbulence = false;
   }
@@ -230,14 +240,18 @@ int runFly(const FlyOptions& o) {
 }
 
 void addFlightOptions(CLI::App* cmd, FlyOptions& o) {
-  cmd->add_option("--trajectory", o.trajectory, "lemniscate or hover-descent")
-      ->check(CLI::IsMember({"lemniscate", "hover-descent"}));
+  cmd->add_option("--trajectory", o.trajectory,
+                  "lemniscate, hover-descent, landing (from --from-height down onto the landing gear, "
+                  "with ground contact and the land detector) or takeoff (from standing on the gear to "
+                  "--height)")
+      ->check(CLI::IsMember({"lemniscate", "hover-descent", "landing", "takeoff"}));
   cmd->add_option("--height", o.height_m,
                   "flight height of the lemniscate / final height of the descent, rotor plane "
                   "above the ground [m]")
       ->check(positive());
   cmd->add_option("--speed", o.speed_mps,
-                  "lemniscate: peak speed; hover-descent: descent rate (default 0.1) [m/s]")
+                  "lemniscate: peak speed; hover-descent: descent rate (default 0.1); landing: "
+                  "cruise descent rate (default 0.5); takeoff: climb rate (default 0.5) [m/s]")
       ->check(positive());
   cmd->add_option("--extent-x", o.extent_x_m, "lemniscate half extent along x [m]")
       ->capture_default_str()
@@ -246,7 +260,15 @@ void addFlightOptions(CLI::App* cmd, FlyOptions& o) {
       ->capture_default_str()
       ->check(positive());
   cmd->add_option("--laps", o.laps, "lemniscate laps")->capture_default_str()->check(wholeIn(1, 1000));
-  cmd->add_option("--from-height", o.from_height_m, "hover-descent start height [m]")
+  cmd->add_option("--from-height", o.from_height_m, "hover-descent and landing start height [m]")
+      ->capture_default_str()
+      ->check(positive());
+  cmd->add_option("--touchdown-speed", o.touchdown_speed_mps,
+                  "landing: the reference's sinking speed when the gear meets the ground [m/s]")
+      ->capture_default_str()
+      ->check(positive());
+  cmd->add_option("--flare-height", o.flare_height_m,
+                  "landing: height above the gear's at which the descent slows to the touchdown speed [m]")
       ->capture_default_str()
       ->check(positive());
   cmd->add_option("--controller", o.controller,
@@ -318,14 +340,24 @@ Runner addFlyCommand(CLI::App& app) {
   // Either a scenario file or the trajectory options, never both.
   for (const char* name : {"--trajectory", "--height", "--vehicle", "--speed",
                            "--extent-x", "--extent-y", "--laps", "--from-height",
-                           "--no-turbulence"}) {
+                           "--touchdown-speed", "--flare-height", "--no-turbulence"}) {
     scenario->excludes(cmd->get_option(name));
   }
   // Combinations CLI11 cannot express: usage errors (exit status 2) at parse time.
   cmd->parse_complete_callback([o, cmd]() {
     o->seed_given = cmd->count("--seed") > 0;
-    if (o->scenario.empty() && (o->trajectory.empty() || !std::isfinite(o->height_m) || o->controller.empty())) {
-      throw CLI::ValidationError("geaware fly", "give --scenario FILE, or --trajectory, --height and --controller");
+    const bool landing = o->trajectory == "landing";
+    if (o->scenario.empty() &&
+        (o->trajectory.empty() || (!landing && !std::isfinite(o->height_m)) || o->controller.empty())) {
+      throw CLI::ValidationError("geaware fly", "give --scenario FILE, or --trajectory, --height and --controller "
+                                                "(a landing: --trajectory landing and --controller)");
+    }
+    if (landing && std::isfinite(o->height_m)) {
+      throw CLI::ValidationError("--height", "--trajectory landing descends onto the landing gear: give "
+                                             "--from-height (the start), not --height");
+    }
+    if (!landing && (cmd->count("--touchdown-speed") > 0 || cmd->count("--flare-height") > 0)) {
+      throw CLI::ValidationError("--touchdown-speed", "--touchdown-speed and --flare-height are for --trajectory landing");
     }
     if (o->trajectory == "lemniscate" && !std::isfinite(o->speed_mps)) {
       throw CLI::ValidationError("--speed", "--trajectory lemniscate needs --speed V (peak speed) [m/s]");

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <numbers>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -82,7 +84,8 @@ class FlightLoop {
         decimation_(decimationOf(s.plant_rate_hz, s.controller.rate_hz)),
         closed_(s.loop == LoopMode::kClosed),
         truth_(truthOf(s)),
-        x0_(initialState(truth_, *terrain_, *s.trajectory)),
+        x0_(s.start_on_ground ? detail::restingState(truth_, *terrain_, *s.trajectory)
+                              : initialState(truth_, *terrain_, *s.trajectory)),
         plant_(truth_, terrain_, plantConfigOf(s), x0_),
         sensors_(s.sensors, s.seed),
         eskf_(std::make_unique<estimation::Eskf>(s.eskf)),  // ≈ 125 kB: on the heap
@@ -96,6 +99,14 @@ class FlightLoop {
     // Motors at the throttle that holds the initial rotor speed.
     throttle_.fill(plant_.throttleForSteadySpeed(x0_.n_rpm[0]));
     if (closed_) controller_.emplace(vehicle_, s.controller, s.residual);
+    if (closed_ && s.land_detector) {
+      land_.emplace(s.vehicle.min_rotor_plane_height_m, *s.land_detector, s.controller.rate_hz);
+    }
+    if (plant_.contact() != nullptr) {
+      contact_.emplace();
+      airborne_ = !s.start_on_ground;
+      contact_->touched = s.start_on_ground;
+    }
     perturbed_start_ = !s.estimator_start.position_error_m.isZero(0.0) ||
                        !s.estimator_start.velocity_error_mps.isZero(0.0) ||
                        !s.estimator_start.attitude_error_rad.isZero(0.0);
@@ -126,6 +137,7 @@ class FlightLoop {
         faults_.applyToMotors(t, plant_);
       }
       const sim::StepResult step = plant_.step(throttle_);
+      if (contact_) observeContact();
       if (step.crash) {
         result_.crash = step.crash;
         break;
@@ -227,9 +239,22 @@ class FlightLoop {
                                             in.estimate.q_WB});
       in.external_accel_W = tick_.disturbance.a_ext_W;
       in.external_accel_valid = tick_.disturbance.valid;
-      tick_.output = controller_->update(in);
-      throttle_ = tick_.output.throttle;
-      ++result_.controller_updates;
+      if (land_ && land_->landed()) {
+        // Down: the flight controller disarms; the controller no longer runs (its motor monitor
+        // would read the spool-down as failing motors) and the last throttles fall to zero.
+        tick_.output = control::ControllerOutput{};
+        const double scale = land_->update(in);
+        for (std::size_t i = 0; i < 4; ++i) throttle_[i] = landed_throttle_[i] * scale;
+        tick_.output.throttle = throttle_;
+      } else {
+        tick_.output = controller_->update(in);
+        throttle_ = tick_.output.throttle;
+        if (land_) {
+          (void)land_->update(in);  // the verdict acts from the next tick on
+          landed_throttle_ = throttle_;
+        }
+        ++result_.controller_updates;
+      }
       tick_.attitude_error_rad = model::angleBetween(x.q_WB, tick_.output.q_des_WB);
     } else {
       tick_.disturbance = estimation::DisturbanceEstimate{};
@@ -243,6 +268,40 @@ class FlightLoop {
     tick_.throttle = throttle_;
     tick_.fault_bits = faults_.empty() ? 0u : faults_.activeBits(t);
     ++result_.control_ticks;
+  }
+
+  /// Touchdown, bounce and lift-off from the truth after each plant step (metrics side).
+  void observeContact() noexcept {
+    const sim::GroundContact& c = *plant_.contact();
+    const sim::PlantState& x = plant_.state();
+    GroundContactSummary& g = *contact_;
+    const int down = c.touchingFeet();
+    if (down > 0) {
+      for (const sim::FootContact& f : c.feet()) g.max_compression_m = std::max(g.max_compression_m, f.compression_m);
+      const double cos_tilt = std::clamp(x.q_WB.toRotationMatrix()(2, 2), -1.0, 1.0);
+      g.max_tilt_on_ground_deg = std::max(g.max_tilt_on_ground_deg, std::acos(cos_tilt) * 180.0 / std::numbers::pi);
+      if (airborne_ && !std::isnan(g.liftoff_t_s)) ++g.recontacts;
+      if (airborne_ && !s_.start_on_ground && std::isnan(g.touchdown_t_s)) {
+        g.touchdown_t_s = x.t_s;
+        g.touchdown_speed_mps = -x.v_W.z();
+      }
+      g.touched = true;
+      airborne_ = false;
+    } else {
+      if (!airborne_ && s_.start_on_ground && std::isnan(g.liftoff_t_s)) g.liftoff_t_s = x.t_s;
+      airborne_ = true;
+      if (!std::isnan(g.touchdown_t_s)) {
+        // The lowest foot's clearance above the surface under it.
+        const Eigen::Matrix3d R = x.q_WB.toRotationMatrix();
+        double clearance = std::numeric_limits<double>::infinity();
+        for (const Eigen::Vector3d& f : truth_.landing_feet_B) {
+          const Eigen::Vector3d p = x.p_W + R * f;
+          clearance = std::min(clearance, p.z() - terrain_->heightAt(p.x(), p.y()));
+        }
+        g.bounce_m = std::max(g.bounce_m, clearance);
+      }
+    }
+    g.feet_down_at_end = down;
   }
 
   void finish(double wall_s) {
@@ -267,6 +326,14 @@ class FlightLoop {
       g.offset = l.offset();
       g.samples = l.used();
       result_.learned_ground_effect = std::move(g);
+    }
+    if (contact_) {
+      if (land_) {
+        contact_->landed = land_->landed();
+        // The detector's clock is the controller's input time, the plant's.
+        contact_->landed_t_s = land_->landedAt();
+      }
+      result_.ground_contact = *contact_;
     }
     result_.estimation.eskf = eskf_->counters();
     result_.estimation.height_rmse_m = est_h_.value();
@@ -293,6 +360,10 @@ class FlightLoop {
   const estimation::LatticeHeightEstimator lattice_;
   estimation::DisturbanceObserver observer_;  // paper eq. 6, on the controller's inputs
   std::optional<control::Controller> controller_;
+  std::optional<control::LandDetector> land_;  // scenario.land_detector
+  std::array<double, 4> landed_throttle_{};     // the throttles when it found the vehicle down
+  std::optional<GroundContactSummary> contact_;  // with ground contact: touchdown, bounce (truth)
+  bool airborne_ = true;
   bool perturbed_start_ = false;
   std::array<double, 4> throttle_{};
   // Metrics (they, and only they besides the caller's observer, read the truth).

@@ -43,6 +43,12 @@ inline double heightAbove(const sim::Terrain& terrain, const Eigen::Vector3d& p_
 
 /// The truth's starting state: hovering level (at the reference's yaw) at the first point of
 /// the trajectory, rotors at the speed that carries the truth there.
+/// Standing on the landing gear under the trajectory's first point (FlightScenario::start_on_ground):
+/// level at the reference's yaw, each leg compressed by its share of the weight, motors stopped
+/// (they spin up to the throttle-0 idle in the first steps).
+[[nodiscard]] sim::PlantState restingState(const sim::TruthParams& truth, const sim::Terrain& terrain,
+                                           const traj::Trajectory& trajectory);
+
 [[nodiscard]] sim::PlantState initialState(const sim::TruthParams& truth, const sim::Terrain& terrain,
                                            const traj::Trajectory& trajectory);
 

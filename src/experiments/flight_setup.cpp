@@ -9,6 +9,7 @@
 #include "geaware/neural/weights_file.hpp"
 #include "geaware/traj/hover_descent.hpp"
 #include "geaware/traj/lemniscate.hpp"
+#include "geaware/traj/touchdown.hpp"
 
 namespace geaware::experiments {
 
@@ -22,6 +23,22 @@ std::shared_ptr<const traj::Trajectory> makeTrajectory(const TrajectoryOptions& 
     p.laps = o.laps;
     return std::make_shared<traj::Lemniscate>(p);
   }
+  if (o.kind == "landing") {
+    traj::LandingParams p;
+    p.from_height_m = o.from_height_m;
+    p.touchdown_height_m = o.touchdown_height_m;
+    if (std::isfinite(o.speed_mps)) p.descent_rate_mps = o.speed_mps;
+    p.touchdown_speed_mps = o.touchdown_speed_mps;
+    p.flare_height_m = o.flare_height_m;
+    return std::make_shared<traj::Landing>(p);
+  }
+  if (o.kind == "takeoff") {
+    traj::TakeOffParams p;
+    p.touchdown_height_m = o.touchdown_height_m;
+    p.to_height_m = o.height_m;
+    if (std::isfinite(o.speed_mps)) p.climb_rate_mps = o.speed_mps;
+    return std::make_shared<traj::TakeOff>(p);
+  }
   traj::HoverDescentParams p;
   p.from_height_m = o.from_height_m;
   p.to_height_m = o.height_m;
@@ -34,9 +51,31 @@ std::string describe(const TrajectoryOptions& o) {
     return fmt::format("lemniscate ±{} m × ±{} m at {} m, {} m/s peak, {} lap{}", o.extent_x_m,
                        o.extent_y_m, o.height_m, o.speed_mps, o.laps, o.laps == 1 ? "" : "s");
   }
+  if (o.kind == "landing") {
+    return fmt::format("landing from {} m at {} m/s, flare from {} m above the gear to {} m/s",
+                       o.from_height_m,
+                       std::isfinite(o.speed_mps) ? o.speed_mps : traj::LandingParams{}.descent_rate_mps,
+                       o.flare_height_m, o.touchdown_speed_mps);
+  }
+  if (o.kind == "takeoff") {
+    return fmt::format("take-off to {} m at {} m/s", o.height_m,
+                       std::isfinite(o.speed_mps) ? o.speed_mps : traj::TakeOffParams{}.climb_rate_mps);
+  }
   return fmt::format(
       "hover descent {} m → {} m at {} m/s", o.from_height_m, o.height_m,
       std::isfinite(o.speed_mps) ? o.speed_mps : traj::HoverDescentParams{}.descent_rate_mps);
+}
+
+bool touchesDown(const TrajectoryOptions& o) noexcept {
+  return !o.lemniscate && (o.kind == "landing" || o.kind == "takeoff");
+}
+
+void applyTouchdown(const TrajectoryOptions& o, FlightScenario& s) {
+  if (!touchesDown(o)) return;
+  s.plant.ground_contact = true;
+  s.controller.clearance_guard = false;
+  if (o.kind == "landing") s.land_detector = control::LandDetectorParams{};
+  if (o.kind == "takeoff") s.start_on_ground = true;
 }
 
 std::shared_ptr<const control::ResidualForceModel> loadResidualNetwork(const std::string& weights_file) {

@@ -2,6 +2,7 @@
 // The truth side's start, shared by the in-process runner (flight.cpp) and the stepped world
 // (stepped_world.cpp): one definition, so the two start every flight from the same state.
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -47,6 +48,24 @@ sim::PlantState initialState(const sim::TruthParams& truth, const sim::Terrain& 
   x0.q_WB = Eigen::Quaterniond(Eigen::AngleAxisd(first.yaw_rad, Eigen::Vector3d::UnitZ()));
   const double n0 = truthHoverSpeed(truth, terrain, x0.p_W, x0.q_WB);
   x0.n_rpm = {n0, n0, n0, n0};
+  return x0;
+}
+
+sim::PlantState restingState(const sim::TruthParams& truth, const sim::Terrain& terrain,
+                             const traj::Trajectory& trajectory) {
+  const traj::FlatOutput first = trajectory.sample(0.0);
+  sim::PlantState x0;
+  x0.q_WB = Eigen::Quaterniond(Eigen::AngleAxisd(first.yaw_rad, Eigen::Vector3d::UnitZ()));
+  double lowest_foot_z = 0.0;  // body z of the lowest foot (negative: below the rotor plane)
+  for (const Eigen::Vector3d& f : truth.landing_feet_B) lowest_foot_z = std::min(lowest_foot_z, f.z());
+  const double n_feet = static_cast<double>(std::max<std::size_t>(1, truth.landing_feet_B.size()));
+  const double sag_m = truth.landing_gear.stiffness_N_per_m > 0.0
+                           ? truth.mass_kg * truth.gravity_mps2 /
+                                 (n_feet * truth.landing_gear.stiffness_N_per_m)
+                           : 0.0;
+  const double ground_z = terrain.heightAt(first.p_W.x(), first.p_W.y());
+  x0.p_W = Eigen::Vector3d(first.p_W.x(), first.p_W.y(), ground_z - lowest_foot_z - sag_m);
+  x0.n_rpm = {0.0, 0.0, 0.0, 0.0};
   return x0;
 }
 

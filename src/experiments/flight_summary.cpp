@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <stdexcept>
 
 #include "geaware/experiments/flight_plots.hpp"
@@ -30,6 +31,21 @@ std::string formatFlight(const FlightResult& r) {
   }
   if (!flags.empty()) s += "controller flags (ticks): " + flags + "\n";
   if (r.guard_active_s) s += fmt::format("clearance guard active {:.3f} s\n", *r.guard_active_s);
+  if (const auto& g = r.ground_contact) {
+    if (!std::isnan(g->touchdown_t_s)) {
+      s += fmt::format("touchdown at {:.3f} s, sinking {:.3f} m/s; bounce {:.1f} mm; legs compressed "
+                       "up to {:.1f} mm; tilt on the ground up to {:.1f}°\n",
+                       g->touchdown_t_s, g->touchdown_speed_mps, g->bounce_m * 1e3,
+                       g->max_compression_m * 1e3, g->max_tilt_on_ground_deg);
+    }
+    if (!std::isnan(g->liftoff_t_s)) {
+      s += fmt::format("lift-off at {:.3f} s; tilt on the ground up to {:.1f}°; back on the ground "
+                       "{} time(s) after it\n",
+                       g->liftoff_t_s, g->max_tilt_on_ground_deg, g->recontacts);
+    }
+    if (g->landed) s += fmt::format("landed (land detector) at {:.3f} s\n", g->landed_t_s);
+    s += fmt::format("feet on the ground at the end: {}\n", g->feet_down_at_end);
+  }
   s += fmt::format("simulated {:.2f} s in {:.3f} s: {:.0f}× real time\n", r.simulated_s, r.wall_s,
                    r.real_time_factor);
   return s;
@@ -59,6 +75,19 @@ io::Json flightJson(const FlightScenario& s, const FlightResult& r) {
   }
   j["flags"] = std::move(flags);
   j["guard_active_s"] = r.guard_active_s ? io::Json(*r.guard_active_s) : io::Json(nullptr);
+  if (const auto& g = r.ground_contact) {
+    const auto number = [](double v) { return std::isnan(v) ? io::Json(nullptr) : io::Json(v); };
+    j["touchdown_speed_mps"] = number(g->touchdown_speed_mps);
+    j["bounce_m"] = std::isnan(g->touchdown_t_s) ? io::Json(nullptr) : io::Json(g->bounce_m);
+    j["ground_contact"] = {{"touchdown_t_s", number(g->touchdown_t_s)},
+                           {"max_compression_m", g->max_compression_m},
+                           {"max_tilt_on_ground_deg", g->max_tilt_on_ground_deg},
+                           {"liftoff_t_s", number(g->liftoff_t_s)},
+                           {"recontacts", g->recontacts},
+                           {"landed", g->landed},
+                           {"landed_t_s", number(g->landed_t_s)},
+                           {"feet_down_at_end", g->feet_down_at_end}};
+  }
   j["simulated_s"] = r.simulated_s;
   j["wall_s"] = r.wall_s;
   j["real_time_factor"] = r.real_time_factor;

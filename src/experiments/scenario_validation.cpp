@@ -159,6 +159,11 @@ std::vector<ScenarioProblem> validate(const FlightScenario& s, ScenarioStage sta
   append(out, s.sensors.validate(), "sensors.");
   append(out, s.eskf.validate(), "eskf.");
   append(out, validate(s.faults), "");
+  if (s.start_on_ground && !s.plant.ground_contact) {
+    out.push_back({"start_on_ground", "true",
+                   "plant.ground_contact on (a vehicle standing on its gear needs the contact model)"});
+  }
+  if (s.land_detector) append(out, s.land_detector->validate(), "land_detector.");
   if (std::abs(s.eskf.imu_rate_hz - s.sensors.imu.rate_Hz) > 1e-9 * s.sensors.imu.rate_Hz) {
     out.push_back({"eskf.imu_rate_hz", show(s.eskf.imu_rate_hz),
                    "the IMU's rate, sensors.imu.rate_Hz = " + show(s.sensors.imu.rate_Hz)});

@@ -113,6 +113,21 @@ void bodyKeys(std::vector<K>& t) {
                      GW_NUMBER(w.truth.battery.efficiency), "motor and ESC efficiency, mechanical/electrical"));
   t.push_back(number("battery.idle_current_A", "A", 0.0, 1000.0, kClosed,
                      GW_NUMBER(w.truth.battery.idle_current_A), "current of everything but the motors"));
+  t.push_back(number("landing_gear.stiffness_N_per_m", "N/m", 0.0, 1e8, kClosed,
+                     GW_NUMBER(w.truth.landing_gear.stiffness_N_per_m),
+                     "each leg's stiffness along the surface normal, for flights with ground contact (0: none)"));
+  t.push_back(number("landing_gear.damping_ratio", "", 0.0, 10.0, kClosed,
+                     GW_NUMBER(w.truth.landing_gear.damping_ratio),
+                     "each leg's damping ratio with its share of the mass"));
+  t.push_back(number("landing_gear.friction_coefficient", "", 0.0, 10.0, kClosed,
+                     GW_NUMBER(w.truth.landing_gear.friction_coefficient),
+                     "Coulomb friction between a foot and the surface"));
+  t.push_back(number("landing_gear.slip_speed_mps", "m/s", 0.0, 1.0, kOpen,
+                     GW_NUMBER(w.truth.landing_gear.slip_speed_mps),
+                     "sliding speed below which the friction is regularised"));
+  t.push_back(number("landing_gear.max_compression_m", "m", 0.0, 1.0, kOpen,
+                     GW_NUMBER(w.truth.landing_gear.max_compression_m),
+                     "a leg compressed further breaks or bottoms out: a strike"));
 }
 
 /// The truth aerodynamics (sim/rotor_aerodynamics.hpp, docs/sim-aerodynamics.md).

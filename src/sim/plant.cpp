@@ -199,6 +199,11 @@ Plant::Plant(const TruthParams& params, std::shared_ptr<const Terrain> terrain,
     motor_torques_ = motor.get();
     contributions_.push_back(std::move(motor));
   }
+  if (config_.ground_contact && terrain_ != nullptr && params_.landing_gear.enabled()) {
+    std::vector<Eigen::Vector3d> feet;
+    for (const Eigen::Vector3d& f : params_.landing_feet_B) feet.push_back(f - params_.cog_offset_B);
+    contact_.emplace(params_.landing_gear, std::move(feet), params_.mass_kg);
+  }
   builtin_count_ = contributions_.size();
   // Only the aerodynamics evaluated per stage and added contributions read the per-stage
   // distances (addContribution switches them back on).
@@ -303,6 +308,7 @@ StepResult Plant::step(const std::array<double, 4>& throttle, double dt_s) {
   t0_s_ = state_.t_s;
   motors_.beginStep(dead_time_ ? dead_time_->apply(t0_s_, t) : t, dt_s);
   sampleTerrain();
+  if (contact_) contact_->sample(terrain_.get(), flat_z_m_ ? &*flat_z_m_ : nullptr, body_, R_WB_);
   if (aero_ != nullptr && !config_.ground_effect_per_stage)
     aero_->hold(aero_->model().flightFactors(midStepGroundDistances(dt_s)));
   for (std::size_t k = builtin_count_; k < contributions_.size(); ++k)
@@ -367,6 +373,7 @@ void Plant::evaluate(double s, RigidBodyDerivative& out) {
   if (aero_ != nullptr) total += aero_->stageWrench(ctx_, s == stage_last_s_);
   if (airframe_drag_ != nullptr) total += airframe_drag_->wrench(ctx_);
   if (motor_torques_ != nullptr) total += motor_torques_->wrench(ctx_);
+  if (contact_) total += contact_->wrench(x, ctx_.R_WB, s == stage_last_s_);
   for (std::size_t k = builtin_count_; k < contributions_.size(); ++k)
     total += contributions_[k]->wrench(ctx_);
   out = rigidBodyDerivative(x, ctx_.R_WB, total, mass_);
@@ -390,10 +397,13 @@ std::optional<Crash> Plant::detectStrike() const noexcept {
   const Eigen::Matrix3d& R = R_WB_;  // state_.q_WB is body_.q_WB
   const Terrain& terrain = *terrain_;
   std::optional<Crash> worst;
+  // With ground contact a foot may sink into the surface as far as its leg gives.
+  const double foot_allowance_m = contact_ ? params_.landing_gear.max_compression_m : 0.0;
   const auto check = [&](const Eigen::Vector3d& pt, StrikePart part, int index) {
     const double ground_z = flat_z_m_ ? *flat_z_m_ : terrain.heightAt(pt.x(), pt.y());
     const double depth = ground_z - pt.z();
-    if (depth > 0.0 && (!worst || depth > worst->depth_m))
+    const double allowance = part == StrikePart::kLandingFoot ? foot_allowance_m : 0.0;
+    if (depth > allowance && (!worst || depth > worst->depth_m))
       worst = Crash{state_.t_s, pt, part, index, depth};
   };
   if (terrain_top_m_) {
@@ -406,7 +416,7 @@ std::optional<Crash> Plant::detectStrike() const noexcept {
     for (const Eigen::Vector3d& r : params_.rotor_position_B)
       lowest = std::min(lowest, R.row(2).dot(r) - drop);
     for (const Eigen::Vector3d& f : params_.landing_feet_B)
-      lowest = std::min(lowest, R.row(2).dot(f));
+      lowest = std::min(lowest, R.row(2).dot(f) + foot_allowance_m);
     if (state_.p_W.z() + lowest >= *terrain_top_m_) return std::nullopt;
   }
   const Eigen::Vector3d ex = params_.propeller_radius_m * R.col(0);

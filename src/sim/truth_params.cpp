@@ -138,6 +138,12 @@ std::vector<model::FieldError> TruthParams::validate() const {
   for (std::size_t i = 0; i < landing_feet_B.size(); ++i) {
     c.componentsWithin("landing_feet_B[" + std::to_string(i) + "]", landing_feet_B[i], 10.0, "m");
   }
+  const LandingGearParams& g = landing_gear;
+  c.range("landing_gear.stiffness_N_per_m", g.stiffness_N_per_m, 0.0, 1e8, kInclusive, "N/m");
+  c.range("landing_gear.damping_ratio", g.damping_ratio, 0.0, 10.0, kInclusive);
+  c.range("landing_gear.friction_coefficient", g.friction_coefficient, 0.0, 10.0, kInclusive);
+  c.range("landing_gear.slip_speed_mps", g.slip_speed_mps, 0.0, 1.0, kExclusive, "m/s");
+  c.range("landing_gear.max_compression_m", g.max_compression_m, 0.0, 1.0, kExclusive, "m");
   for (model::FieldError& e : aero.validate()) errors.push_back(std::move(e));  // "aero.…"
   return errors;
 }
@@ -160,6 +166,12 @@ TruthParams fromNominal(const model::VehicleParams& nominal) {
   for (const Eigen::Vector3d& r : p.rotor_position_B) {
     p.landing_feet_B.emplace_back(0.5 * r.x(), 0.5 * r.y(), -nominal.min_rotor_plane_height_m);
   }
+  p.landing_gear.stiffness_N_per_m =
+      nominal.mass_kg * model::kGravity /
+      (static_cast<double>(p.landing_feet_B.size()) * kDefaultGearStaticDeflectionM);
+  p.landing_gear.damping_ratio = kDefaultGearDampingRatio;
+  p.landing_gear.friction_coefficient = kDefaultGearFrictionCoefficient;
+  p.landing_gear.max_compression_m = kDefaultGearMaxCompressionM;
   return p;
 }
 

@@ -463,6 +463,21 @@ TEST(Plant, StepDoesNotAllocate) {
   EXPECT_TRUE(crashed);
 }
 
+TEST(Plant, AStepWithGroundContactDoesNotAllocate) {
+  // The same height map with the landing gear on it: a fall onto the feet, which hold.
+  std::vector<std::vector<double>> rows(21, std::vector<double>(21, 0.0));
+  rows[10][10] = 0.002;
+  auto map = std::make_shared<HeightMap>(-1.0, -1.0, 0.1, rows);
+  PlantConfig cfg;
+  cfg.ground_contact = true;
+  Plant plant(paperTruth(), map, cfg, at({0.05, 0.0, 0.1}));
+  ASSERT_NE(plant.contact(), nullptr);
+  const long before = geaware_test::allocationCount();
+  for (int k = 0; k < 2000; ++k) ASSERT_FALSE(plant.step({0.0, 0.0, 0.0, 0.0}).crash) << k;
+  EXPECT_EQ(geaware_test::allocationCount(), before);
+  EXPECT_EQ(plant.contact()->touchingFeet(), 4);
+}
+
 TEST(Plant, RejectsInvalidConfiguration) {
   PlantConfig cfg;
   cfg.step_s = 0.0;

@@ -22,6 +22,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -31,6 +32,7 @@
 
 #include "geaware/control/controller.hpp"
 #include "geaware/control/controller_params.hpp"
+#include "geaware/control/land_detector.hpp"
 #include "geaware/control/residual_force.hpp"
 #include "geaware/estimation/disturbance_observer.hpp"
 #include "geaware/estimation/eskf.hpp"
@@ -126,6 +128,13 @@ struct FlightScenario {
   bool check_feasibility = true;
   /// Faults injected on purpose (experiments/faults.hpp; the fault campaign); empty: none.
   std::vector<Fault> faults;
+  /// Start standing on the landing gear under the first reference point (level, at the
+  /// reference's yaw, legs compressed by the weight, motors idling at throttle 0) instead of
+  /// hovering at it: a take-off. Needs plant.ground_contact.
+  bool start_on_ground = false;
+  /// The land detector (control/land_detector.hpp) on the controller's side: once it finds the
+  /// vehicle on its gear it takes the throttles to zero. Empty: none (the controller flies on).
+  std::optional<control::LandDetectorParams> land_detector;
 };
 
 /// One problem with a scenario, e.g. {"controller.rate_hz", "300", "plant_rate_hz / rate_hz
@@ -197,6 +206,31 @@ struct LearnedGroundEffect {
   [[nodiscard]] double ratio(double h_m) const noexcept;
 };
 
+/// Touchdown and lift-off, from the truth (flights with plant.ground_contact on).
+struct GroundContactSummary {
+  bool touched = false;  ///< a foot met the surface after the start (or the flight started on it)
+  /// Plant time of the first foot contact of a flight that started in the air (NaN: none) [s].
+  double touchdown_t_s = std::nan("");
+  /// The geometric centre's true sinking speed at that step (positive down) [m/s].
+  double touchdown_speed_mps = std::nan("");
+  /// The highest the lowest foot rose above the surface, airborne again after the first
+  /// touchdown: the bounce (0: none) [m].
+  double bounce_m = 0.0;
+  /// The largest leg compression of the flight [m].
+  double max_compression_m = 0.0;
+  /// The largest tilt of z_B from the vertical while a foot touched [deg].
+  double max_tilt_on_ground_deg = 0.0;
+  /// Plant time at which every foot had left the surface, for a flight started on it (NaN:
+  /// never) [s]. Touchdown and bounce are not tracked for such a flight (a take-off).
+  double liftoff_t_s = std::nan("");
+  /// Airborne phases that ended on the ground again after the lift-off (a take-off's hops).
+  int recontacts = 0;
+  /// Feet touching at the end of the flight.
+  int feet_down_at_end = 0;
+  bool landed = false;              ///< the land detector's verdict
+  double landed_t_s = std::nan("");  ///< its time [s]
+};
+
 struct FlightResult {
   /// Reference vs TRUE geometric centre, sampled at the control rate over [0, duration] of the
   /// trajectory (up to the crash, if any).
@@ -216,6 +250,8 @@ struct FlightResult {
   EstimationSummary estimation;
   /// What the controller learned of F_G in flight; empty when it does not learn.
   std::optional<LearnedGroundEffect> learned_ground_effect;
+  /// Touchdown, bounce and lift-off; empty unless the flight allows ground contact.
+  std::optional<GroundContactSummary> ground_contact;
   double simulated_s = 0.0;       ///< plant time at the end [s]
   double wall_s = 0.0;            ///< wall time of the loop (not deterministic) [s]
   double real_time_factor = 0.0;  ///< simulated_s / wall_s [-]

@@ -7,20 +7,38 @@
 #include <string>
 
 #include "geaware/control/residual_force.hpp"
+#include "geaware/experiments/flight.hpp"
 #include "geaware/traj/trajectory.hpp"
 
 namespace geaware::experiments {
 
-/// A lemniscate (Table I) or a hover descent (the hover experiment).
+/// A lemniscate (Table I), a hover descent (the hover experiment), a landing or a take-off
+/// (issue 13 item 5; traj/touchdown.hpp).
 struct TrajectoryOptions {
   bool lemniscate = true;
+  /// When not a lemniscate: "hover-descent", "landing" or "takeoff".
+  std::string kind = "hover-descent";
   double height_m = 0.0;     ///< lemniscate height / final height of the descent [m]
   double speed_mps = 0.0;    ///< lemniscate peak speed / descent rate (NaN: default) [m/s]
   double extent_x_m = 1.5;   ///< lemniscate half extents [m]
   double extent_y_m = 0.8;
   int laps = 1;
-  double from_height_m = 1.5;  ///< descent start height [m]
+  double from_height_m = 1.5;  ///< descent (and landing) start height [m]
+  /// Landing and take-off: the rotor plane's z standing on the gear, the vehicle file's
+  /// min_rotor_plane_height_m over flat ground at z = 0 [m].
+  double touchdown_height_m = 0.0;
+  double touchdown_speed_mps = 0.1;  ///< landing: the reference's sinking speed at touchdown [m/s]
+  double flare_height_m = 0.3;       ///< landing: flare start above the touchdown height [m]
 };
+
+/// Whether the options describe a landing or a take-off (flights with ground contact).
+[[nodiscard]] bool touchesDown(const TrajectoryOptions& o) noexcept;
+
+/// Makes a landing or take-off flyable: ground contact on in the plant, the flight starts
+/// standing on the gear (take-off) or ends with the land detector (landing), and the clearance
+/// guard, which holds the rotor plane above the gear while tracking, is off (this flight goes
+/// down to the gear on purpose). Nothing for other trajectories.
+void applyTouchdown(const TrajectoryOptions& o, FlightScenario& s);
 
 [[nodiscard]] std::shared_ptr<const traj::Trajectory> makeTrajectory(const TrajectoryOptions& o);
 

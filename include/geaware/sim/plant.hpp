@@ -48,6 +48,7 @@
 #include <Eigen/Core>
 
 #include "geaware/sim/motors.hpp"
+#include "geaware/sim/ground_contact.hpp"
 #include "geaware/sim/plant_state.hpp"
 #include "geaware/sim/rigid_body.hpp"
 #include "geaware/sim/rotor_aerodynamics.hpp"
@@ -102,6 +103,11 @@ struct PlantConfig {
   bool motor_reaction = true;  ///< J_R·ṅ reaction torque
   bool gyroscopic = true;      ///< −ω × Σ J_R·Ω_i·d_i·z_B
   bool ground_strikes = true;  ///< end the run when a rotor rim or foot goes under the surface
+  /// The landing gear touches the ground (TruthParams::landing_gear, sim/ground_contact.hpp):
+  /// a foot under the surface is pushed back and rubs along it; only a rotor disc under the
+  /// surface or a leg compressed beyond its max_compression_m is a strike. Off (the default):
+  /// any foot under the surface is a strike. Needs a terrain and a gear with stiffness > 0.
+  bool ground_contact = false;
   int rim_samples = 8;         ///< points sampled on each rotor-disc rim for strikes [-]
   /// Evaluate the ground-effect factors at every RK4 stage instead of once per step at the
   /// predicted mid-step rotor distances (see the header comment): ≈ 50 % more time per step,
@@ -167,6 +173,11 @@ class Plant {
   /// A motor fault from the next step on (Motors::setSpeedScale).
   void setMotorSpeedScale(std::size_t i, double scale) noexcept { motors_.setSpeedScale(i, scale); }
   [[nodiscard]] const Terrain* terrain() const noexcept { return terrain_.get(); }
+  /// The landing gear's contact with the ground; null unless PlantConfig::ground_contact is on
+  /// with a terrain and a gear of stiffness > 0.
+  [[nodiscard]] const GroundContact* contact() const noexcept {
+    return contact_ ? &*contact_ : nullptr;
+  }
   /// Aerodynamic outputs (per-rotor thrust and gain) at the end of the last step, from RK4's
   /// last stage like PlantState::a_W, with the step's ground-effect factors (all zero when the
   /// rotor aerodynamics are off).
@@ -211,6 +222,7 @@ class Plant {
   detail::RotorAeroContribution* aero_ = nullptr;
   detail::AirframeDragContribution* airframe_drag_ = nullptr;
   detail::MotorTorqueContribution* motor_torques_ = nullptr;
+  std::optional<GroundContact> contact_;  // the landing gear on the ground (ground_contact)
   std::optional<ThrottleDelay> dead_time_;  // the ESC/link dead time (when > 0)
   std::size_t builtin_count_ = 0;
   bool stage_surroundings_ = true;  // fill ctx_.surroundings at every stage (someone reads them)

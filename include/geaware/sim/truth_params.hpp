@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 
 #include "geaware/model/vehicle_params.hpp"
+#include "geaware/sim/ground_contact.hpp"
 #include "geaware/sim/rotor_aerodynamics.hpp"
 
 namespace geaware::sim {
@@ -91,6 +92,9 @@ struct TruthParams {
   BatteryParams battery;
   std::vector<Eigen::Vector3d>
       landing_feet_B;          ///< foot contact points rel. geometric centre, body [m]
+  /// The legs under those feet, used when the flight allows ground contact
+  /// (PlantConfig::ground_contact); otherwise a foot under the surface is a strike.
+  LandingGearParams landing_gear;
   RotorAeroParams aero;        ///< truth aerodynamics (defaults: calibrated)
   double gravity_mps2 = 9.81;  ///< [m/s²] (model::kGravity)
 
@@ -109,7 +113,18 @@ struct TruthParams {
 
 /// The truth identical to the nominal vehicle: no CoG offset, no thrust spread, the nominal
 /// curve and coefficients, battery at full charge, four landing feet under the rotor arms at
-/// the vehicle's lowest rotor-plane height. Requires validated nominal parameters.
+/// the vehicle's lowest rotor-plane height, and legs with the representative gear of
+/// kDefaultGear* below. Requires validated nominal parameters.
+/// The default landing gear (docs/truth-file.md, "Landing gear"): NOT measured on the paper's
+/// vehicle, which never lands in the paper. Legs that sag this far under the vehicle's weight
+/// (stiffness m·g/(N·δ_s)) [m], their damping ratio (a level drop then rebounds with
+/// restitution 0.45) [-], rubber feet on a hard floor [-], and how far a leg can give before
+/// it breaks or bottoms out [m].
+inline constexpr double kDefaultGearStaticDeflectionM = 0.003;
+inline constexpr double kDefaultGearDampingRatio = 0.3;
+inline constexpr double kDefaultGearFrictionCoefficient = 0.6;
+inline constexpr double kDefaultGearMaxCompressionM = 0.02;
+
 [[nodiscard]] TruthParams fromNominal(const model::VehicleParams& nominal);
 
 /// A seeded random variation of `base` within `spec` (mass, inertia, CoG, thrust spread; a
