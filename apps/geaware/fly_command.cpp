@@ -112,7 +112,6 @@ experiments::FlightScenario scenarioOf(const FlyOptions& o) {
     // above the default flat ground at z = 0.
     plan.touchdown_height_m = s.vehicle.min_rotor_plane_height_m;
     s.trajectory = experiments::makeTrajectory(plan);
-    experiments::applyTouchdown(plan, s);
     s.seed = o.seed;
     if (o.no_turbulence) s.disturbances.turbulence = false;
   }
@@ -137,6 +136,7 @@ experiments::FlightScenario scenarioOf(const FlyOptions& o) {
     throw UsageError("--neural-weights is only used with acceleration compensation neural");
   }
   if (neural) s.residual = experiments::loadResidualNetwork(o.neural_weights);
+  experiments::applyTouchdown(s);  // after --controller: a landing flies without the guard
   return s;
 }
 

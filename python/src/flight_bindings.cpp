@@ -180,6 +180,7 @@ experiments::FlightScenario scenarioOf(const FlyArgs& a) {
   if (a.seed) s.seed = *a.seed;
   if (a.controller_params) s.controller = io::withControllerParamsFile(s.controller, *a.controller_params);
   s.start_hover_s = a.start_hover_s;
+  experiments::applyTouchdown(s);  // a scenario file's landing or take-off
   if (s.controller.acceleration == control::AccelerationCompensation::kNeural) {
     throw py::value_error("fly: the Neural-Lander baseline (neural:…) is not available from Python");
   }

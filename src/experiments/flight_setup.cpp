@@ -66,18 +66,6 @@ std::string describe(const TrajectoryOptions& o) {
       std::isfinite(o.speed_mps) ? o.speed_mps : traj::HoverDescentParams{}.descent_rate_mps);
 }
 
-bool touchesDown(const TrajectoryOptions& o) noexcept {
-  return !o.lemniscate && (o.kind == "landing" || o.kind == "takeoff");
-}
-
-void applyTouchdown(const TrajectoryOptions& o, FlightScenario& s) {
-  if (!touchesDown(o)) return;
-  s.plant.ground_contact = true;
-  s.controller.clearance_guard = false;
-  if (o.kind == "landing") s.land_detector = control::LandDetectorParams{};
-  if (o.kind == "takeoff") s.start_on_ground = true;
-}
-
 std::shared_ptr<const control::ResidualForceModel> loadResidualNetwork(const std::string& weights_file) {
   return std::make_shared<neural::ResidualNetwork>(neural::loadWeights(weights_file).weights);
 }

@@ -9,6 +9,7 @@
 #include "flight_internal.hpp"
 #include "geaware/sim/rotor_aerodynamics.hpp"
 #include "geaware/sim/rotor_turbulence.hpp"
+#include "geaware/traj/touchdown.hpp"
 
 namespace geaware::experiments::detail {
 namespace {
@@ -92,3 +93,17 @@ void addDisturbances(const FlightScenario& s, const sim::TruthParams& truth, sim
 }
 
 }  // namespace geaware::experiments::detail
+
+namespace geaware::experiments {
+
+void applyTouchdown(FlightScenario& s) {
+  const bool landing = dynamic_cast<const traj::Landing*>(s.trajectory.get()) != nullptr;
+  const bool takeoff = dynamic_cast<const traj::TakeOff*>(s.trajectory.get()) != nullptr;
+  if (!landing && !takeoff) return;
+  s.plant.ground_contact = true;
+  s.controller.clearance_guard = false;
+  if (landing && !s.land_detector) s.land_detector = control::LandDetectorParams{};
+  if (takeoff) s.start_on_ground = true;
+}
+
+}  // namespace geaware::experiments

@@ -9,6 +9,7 @@
 #include "geaware/io/input_file.hpp"
 #include "geaware/io/controller_params_file.hpp"
 #include "geaware/io/format_version.hpp"
+#include "geaware/experiments/flight_setup.hpp"
 #include "geaware/experiments/world_setup.hpp"
 #include "geaware/io/height_map_file.hpp"
 #include "geaware/io/truth_file.hpp"
@@ -17,6 +18,7 @@
 #include "geaware/model/units.hpp"
 #include "geaware/sim/terrains.hpp"
 #include "geaware/traj/hover_descent.hpp"
+#include "geaware/traj/touchdown.hpp"
 #include "geaware/traj/lemniscate.hpp"
 #include "geaware/traj/min_snap.hpp"
 
@@ -78,7 +80,8 @@ void checkSegmentTimes(io::MapReader& t, const std::vector<traj::Waypoint>& wps,
 }
 
 std::shared_ptr<const traj::Trajectory> readTrajectory(io::MapReader& t) {
-  const std::string type = t.choice("type", {"lemniscate", "hover_descent", "waypoints"});
+  const std::string type =
+      t.choice("type", {"lemniscate", "hover_descent", "waypoints", "landing", "takeoff"});
   if (type == "lemniscate") {
     traj::LemniscateParams p;
     p.centre_xy_m = vec2(fixedFinite(t, "centre_xy_m", 2));
@@ -104,6 +107,35 @@ std::shared_ptr<const traj::Trajectory> readTrajectory(io::MapReader& t) {
     p.yaw_rad = t.finiteNumber("yaw_deg") * model::kDegToRad;
     t.rejectUnknownKeys();
     return buildOrReport(t, "type", [&] { return std::make_shared<const traj::HoverDescent>(p); });
+  }
+  if (type == "landing") {
+    traj::LandingParams p;
+    p.position_xy_m = vec2(fixedFinite(t, "position_xy_m", 2));
+    p.from_height_m = t.finiteNumber("from_height_m");
+    p.touchdown_height_m = t.finiteNumber("touchdown_height_m");
+    p.descent_rate_mps = t.finiteNumber("descent_rate_mps");
+    p.flare_height_m = t.finiteNumber("flare_height_m");
+    p.touchdown_speed_mps = t.finiteNumber("touchdown_speed_mps");
+    p.press_depth_m = t.finiteNumber("press_depth_m");
+    p.ramp_time_s = t.finiteNumber("ramp_time_s");
+    p.hold_start_s = t.finiteNumber("hold_start_s");
+    p.hold_end_s = t.finiteNumber("hold_end_s");
+    p.yaw_rad = t.finiteNumber("yaw_deg") * model::kDegToRad;
+    t.rejectUnknownKeys();
+    return buildOrReport(t, "type", [&] { return std::make_shared<const traj::Landing>(p); });
+  }
+  if (type == "takeoff") {
+    traj::TakeOffParams p;
+    p.position_xy_m = vec2(fixedFinite(t, "position_xy_m", 2));
+    p.touchdown_height_m = t.finiteNumber("touchdown_height_m");
+    p.to_height_m = t.finiteNumber("to_height_m");
+    p.climb_rate_mps = t.finiteNumber("climb_rate_mps");
+    p.ramp_time_s = t.finiteNumber("ramp_time_s");
+    p.hold_start_s = t.finiteNumber("hold_start_s");
+    p.hold_end_s = t.finiteNumber("hold_end_s");
+    p.yaw_rad = t.finiteNumber("yaw_deg") * model::kDegToRad;
+    t.rejectUnknownKeys();
+    return buildOrReport(t, "type", [&] { return std::make_shared<const traj::TakeOff>(p); });
   }
   if (type == "waypoints") {
     std::vector<traj::Waypoint> wps;
@@ -266,6 +298,7 @@ FlightScenario parseScenarioYaml(std::string_view yaml_text, const std::string& 
   }
   root.rejectUnknownKeys();
   if (!ctx.problems.empty()) throw io::ConfigError(source, std::move(ctx.problems));
+  applyTouchdown(s);  // a landing or take-off: ground contact, the land detector, no guard
 
   // Whole-scenario checks (ranges, the wind's and mismatch's own validation), each at its key.
   // The residual network of acceleration "neural" is not part of the file (the caller loads it,

@@ -6,8 +6,11 @@
 
 #include "geaware/experiments/sweep.hpp"
 
+#include "geaware/experiments/flight_setup.hpp"
+
 #include <fmt/format.h>
 
+#include <cmath>
 #include <map>
 #include <numbers>
 #include <memory>
@@ -224,6 +227,7 @@ FlightScenario sweepFlightScenario(const SweepSpec& spec, const SweepKey& k) {
     f.eskf.imu_gyro_range_rad_per_s = 250.0 * std::numbers::pi / 180.0;
     f.eskf.imu_accel_range_m_per_s2 = 4.0 * model::kGravity;
   }
+  applyTouchdown(f);  // a landing or take-off scenario
   return f;
 }
 
@@ -237,6 +241,7 @@ std::vector<ScenarioProblem> sweepScenarioProblems(const SweepSpec& spec, std::s
   if (!spec.controllers.empty()) {
     f.controller = control::applyParameters(spec.controllers.front().params, spec.controller_values);
   }
+  applyTouchdown(f);
   return validate(f, ScenarioStage::kFile);
 }
 
@@ -279,6 +284,16 @@ std::string sweepRecord(const SweepSpec& spec, const SweepKey& k, const FlightRe
   j["terminated"] = ff.terminated;
   j["non_finite_commands"] = ff.non_finite_commands;
   j["simulated_s"] = r.simulated_s;
+  if (const auto& g = r.ground_contact) {
+    // Landings and take-offs (flights with ground contact) only: other records keep their bytes.
+    const auto number = [](double v) { return std::isnan(v) ? io::Json(nullptr) : io::Json(v); };
+    j["touchdown_speed_mps"] = number(g->touchdown_speed_mps);
+    j["bounce_m"] = std::isnan(g->touchdown_t_s) ? io::Json(nullptr) : io::Json(g->bounce_m);
+    j["landed"] = g->landed;
+    j["liftoff_t_s"] = number(g->liftoff_t_s);
+    j["recontacts"] = g->recontacts;
+    j["max_tilt_on_ground_deg"] = g->max_tilt_on_ground_deg;
+  }
   // Compact, NaN as null, invalid UTF-8 replaced: one line, the same bytes everywhere.
   return j.dump(-1, ' ', false, io::Json::error_handler_t::replace);
 }

@@ -14,6 +14,7 @@
 #include "geaware/sim/terrains.hpp"
 #include "geaware/sim/world.hpp"
 #include "geaware/traj/lemniscate.hpp"
+#include "geaware/traj/touchdown.hpp"
 
 namespace {
 
@@ -108,6 +109,36 @@ TEST(ScenarioFile, CommittedExamplesLoad) {
   ASSERT_TRUE(edge.mismatch.has_value());
   EXPECT_DOUBLE_EQ(edge.mismatch->mass_rel, 0.05);
   EXPECT_NEAR(edge.trajectory->sample(0.0).p_W.x(), -1.0, 1e-12);
+}
+
+TEST(ScenarioFile, LandingAndTakeOffComeWithGroundContact) {
+  const FlightScenario land = geaware::experiments::loadScenarioFile(sourceDir() / "config/scenarios/landing.yaml");
+  const auto* l = dynamic_cast<const geaware::traj::Landing*>(land.trajectory.get());
+  ASSERT_NE(l, nullptr);
+  EXPECT_DOUBLE_EQ(l->params().touchdown_height_m, land.vehicle.min_rotor_plane_height_m);
+  EXPECT_DOUBLE_EQ(l->params().touchdown_speed_mps, 0.1);
+  EXPECT_TRUE(land.plant.ground_contact);
+  EXPECT_TRUE(land.land_detector.has_value());
+  EXPECT_FALSE(land.start_on_ground);
+  EXPECT_FALSE(land.controller.clearance_guard);  // "recommended" has it; a landing does not
+
+  const FlightScenario up = geaware::experiments::loadScenarioFile(sourceDir() / "config/scenarios/takeoff.yaml");
+  ASSERT_NE(dynamic_cast<const geaware::traj::TakeOff*>(up.trajectory.get()), nullptr);
+  EXPECT_TRUE(up.plant.ground_contact);
+  EXPECT_TRUE(up.start_on_ground);
+  EXPECT_FALSE(up.land_detector.has_value());
+
+  // The lemniscate keeps the strike rule and the guard.
+  const FlightScenario low = geaware::experiments::loadScenarioFile(sourceDir() / "config/scenarios/lemniscate_low_recommended.yaml");
+  EXPECT_FALSE(low.plant.ground_contact);
+  EXPECT_TRUE(low.controller.clearance_guard);
+
+  // A flare that does not fit is refused at its key, with the reason.
+  const std::string text = slurp(sourceDir() / "config/scenarios/landing.yaml");
+  const auto problems = problemsOf(replaced(text, "from_height_m: 1.0", "from_height_m: 0.4"));
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_EQ(problems[0].key, "trajectory.type");
+  EXPECT_NE(problems[0].message.find("from_height_m = 0.4 (expected >= 0.622"), std::string::npos);
 }
 
 TEST(ScenarioFile, FormatVersionAbsentIsOneAndUnknownIsRefused) {

@@ -30,7 +30,7 @@ FlightScenario touchdownFlight(const std::string& controller, const std::string&
   t.speed_mps = 0.5;  // descent / climb rate
   t.touchdown_height_m = s.vehicle.min_rotor_plane_height_m;
   s.trajectory = makeTrajectory(t);
-  applyTouchdown(t, s);
+  applyTouchdown(s);
   s.seed = seed;
   return s;
 }

@@ -137,6 +137,14 @@ struct FlightScenario {
   std::optional<control::LandDetectorParams> land_detector;
 };
 
+/// Makes a landing or take-off flyable, from its trajectory (traj::Landing, traj::TakeOff):
+/// ground contact on in the plant, the flight starts standing on the gear (take-off) or ends
+/// with the land detector (landing), and the clearance guard, which holds the rotor plane above
+/// the gear while tracking, is off (this flight goes down to the gear on purpose). Nothing for
+/// other trajectories. Idempotent: called wherever a scenario is finished (fly, scenario files,
+/// sweeps, Python), after its controller configuration is set.
+void applyTouchdown(FlightScenario& s);
+
 /// One problem with a scenario, e.g. {"controller.rate_hz", "300", "plant_rate_hz / rate_hz
 /// an integer"}.
 using ScenarioProblem = model::FieldError;

@@ -7,7 +7,6 @@
 #include <string>
 
 #include "geaware/control/residual_force.hpp"
-#include "geaware/experiments/flight.hpp"
 #include "geaware/traj/trajectory.hpp"
 
 namespace geaware::experiments {
@@ -31,14 +30,6 @@ struct TrajectoryOptions {
   double flare_height_m = 0.3;       ///< landing: flare start above the touchdown height [m]
 };
 
-/// Whether the options describe a landing or a take-off (flights with ground contact).
-[[nodiscard]] bool touchesDown(const TrajectoryOptions& o) noexcept;
-
-/// Makes a landing or take-off flyable: ground contact on in the plant, the flight starts
-/// standing on the gear (take-off) or ends with the land detector (landing), and the clearance
-/// guard, which holds the rotor plane above the gear while tracking, is off (this flight goes
-/// down to the gear on purpose). Nothing for other trajectories.
-void applyTouchdown(const TrajectoryOptions& o, FlightScenario& s);
 
 [[nodiscard]] std::shared_ptr<const traj::Trajectory> makeTrajectory(const TrajectoryOptions& o);
 
