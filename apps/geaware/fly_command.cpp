@@ -42,6 +42,7 @@ struct FlyOptions {
   double extent_x_m = 1.5;
   double extent_y_m = 0.8;
   int laps = 1;
+  double height_swing_m = 0.0;
   double from_height_m = 1.5;
   double touchdown_speed_mps = 0.1;
   double flare_height_m = 0.3;
@@ -85,6 +86,7 @@ experiments::TrajectoryOptions flightPlan(const FlyOptions& o) {
   p.extent_x_m = o.extent_x_m;
   p.extent_y_m = o.extent_y_m;
   p.laps = o.laps;
+  p.height_swing_m = o.height_swing_m;
   p.from_height_m = o.from_height_m;
   return p;
 }
@@ -260,6 +262,11 @@ void addFlightOptions(CLI::App* cmd, FlyOptions& o) {
       ->capture_default_str()
       ->check(positive());
   cmd->add_option("--laps", o.laps, "lemniscate laps")->capture_default_str()->check(wholeIn(1, 1000));
+  cmd->add_option("--height-swing", o.height_swing_m,
+                  "lemniscate: the height rises by this much from --height to the middle of each lap "
+                  "and back, z = H + S·(1 − cos θ)/2 (0: level) [m]")
+      ->capture_default_str()
+      ->check(nonNegative());
   cmd->add_option("--from-height", o.from_height_m, "hover-descent and landing start height [m]")
       ->capture_default_str()
       ->check(positive());
@@ -339,7 +346,7 @@ Runner addFlyCommand(CLI::App& app) {
   addOutputOptions(cmd, *o);
   // Either a scenario file or the trajectory options, never both.
   for (const char* name : {"--trajectory", "--height", "--vehicle", "--speed",
-                           "--extent-x", "--extent-y", "--laps", "--from-height",
+                           "--extent-x", "--extent-y", "--laps", "--height-swing", "--from-height",
                            "--touchdown-speed", "--flare-height", "--no-turbulence"}) {
     scenario->excludes(cmd->get_option(name));
   }
@@ -355,6 +362,9 @@ Runner addFlyCommand(CLI::App& app) {
     if (landing && std::isfinite(o->height_m)) {
       throw CLI::ValidationError("--height", "--trajectory landing descends onto the landing gear: give "
                                              "--from-height (the start), not --height");
+    }
+    if (o->trajectory != "lemniscate" && cmd->count("--height-swing") > 0) {
+      throw CLI::ValidationError("--height-swing", "--height-swing is for --trajectory lemniscate");
     }
     if (!landing && (cmd->count("--touchdown-speed") > 0 || cmd->count("--flare-height") > 0)) {
       throw CLI::ValidationError("--touchdown-speed", "--touchdown-speed and --flare-height are for --trajectory landing");

@@ -33,10 +33,17 @@ model::VehicleModel learningVehicle(const model::VehicleModel& vehicle, const Co
 
 }  // namespace detail
 
+namespace {
+constexpr double kLearnAboveGearM = 0.01;  ///< no sample this close above the gear's height [m]
+}  // namespace
+
 void Controller::learnGroundEffect(const ControllerInput& in) noexcept {
   // The paper's flight estimate F̃_G = m·z_Wᵀ·ã_ext/T_f, with the thrust filtered as the
   // observer filters it, at the height the ranger measured this tick.
   if (!(in.external_accel_valid && in.height_valid && in.external_accel_W.allFinite())) return;
+  // Within a centimetre of the landing gear's height the feet may be on the ground (standing
+  // before a take-off, touching down): its support would be learned as ground effect.
+  if (in.height_m <= min_rotor_plane_height_m_ + kLearnAboveGearM) return;
   const double thrust_acc = mem_.thrust_acc_f_mps2_;
   if (!(thrust_acc > 0.5 * model::kGravity)) return;  // not carried by the rotors
   const double cos_tilt = in.estimate.q_WB.normalized().toRotationMatrix()(2, 2);

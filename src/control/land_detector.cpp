@@ -21,6 +21,13 @@ std::vector<model::FieldError> LandDetectorParams::validate() const {
   return errors;
 }
 
+bool referenceOnTheGround(const ControllerInput& in, double gear_height_m, double margin_m) noexcept {
+  if (in.reference.v_W.z() > 0.01) return false;
+  if (!in.height_valid) return true;
+  const double ground_z = in.estimate.p_W.z() - in.height_m;
+  return in.reference.p_W.z() - ground_z <= gear_height_m + margin_m;
+}
+
 LandDetector::LandDetector(double gear_height_m, const LandDetectorParams& params, double rate_hz)
     : gear_height_m_(gear_height_m),
       params_(params),

@@ -105,6 +105,7 @@ class FlightLoop {
     if (plant_.contact() != nullptr) {
       contact_.emplace();
       airborne_ = !s.start_on_ground;
+      ground_idle_ = s.start_on_ground && closed_;
       contact_->touched = s.start_on_ground;
     }
     perturbed_start_ = !s.estimator_start.position_error_m.isZero(0.0) ||
@@ -235,11 +236,23 @@ class FlightLoop {
       in.ground_shape_valid = in.height_valid;
       in.rotor_speeds_rpm = telemetry_rpm_;
       // The disturbance observer (paper eq. 6) on exactly the controller's inputs.
+      if (ground_idle_ &&
+          !control::referenceOnTheGround(in, s_.vehicle.min_rotor_plane_height_m, 0.01)) {
+        ground_idle_ = false;  // the climb starts: from here on the controller flies
+        observer_.reset();
+      }
       tick_.disturbance = observer_.update({in.t_s, in.gyro_B, in.accel_B, in.rotor_speeds_rpm,
                                             in.estimate.q_WB});
       in.external_accel_W = tick_.disturbance.a_ext_W;
       in.external_accel_valid = tick_.disturbance.valid;
-      if (land_ && land_->landed()) {
+      if (ground_idle_) {
+        // A take-off before its reference leaves the ground: armed, motors idling, the controller
+        // not yet flying (it would read the idle as failing motors and the ground's support as a
+        // disturbance). The observer starts afresh when the climb does.
+        tick_.output = control::ControllerOutput{};
+        throttle_.fill(0.0);
+        tick_.output.throttle = throttle_;
+      } else if (land_ && land_->landed()) {
         // Down: the flight controller disarms; the controller no longer runs (its motor monitor
         // would read the spool-down as failing motors) and the last throttles fall to zero.
         tick_.output = control::ControllerOutput{};
@@ -253,6 +266,7 @@ class FlightLoop {
           (void)land_->update(in);  // the verdict acts from the next tick on
           landed_throttle_ = throttle_;
         }
+
         ++result_.controller_updates;
       }
       tick_.attitude_error_rad = model::angleBetween(x.q_WB, tick_.output.q_des_WB);
@@ -362,6 +376,7 @@ class FlightLoop {
   std::optional<control::Controller> controller_;
   std::optional<control::LandDetector> land_;  // scenario.land_detector
   std::array<double, 4> landed_throttle_{};     // the throttles when it found the vehicle down
+  bool ground_idle_ = false;  // a take-off before its reference leaves the ground: motors idle
   std::optional<GroundContactSummary> contact_;  // with ground contact: touchdown, bounce (truth)
   bool airborne_ = true;
   bool perturbed_start_ = false;

@@ -21,6 +21,7 @@ std::shared_ptr<const traj::Trajectory> makeTrajectory(const TrajectoryOptions& 
     p.height_m = o.height_m;
     p.peak_speed_mps = o.speed_mps;
     p.laps = o.laps;
+    p.height_swing_m = o.height_swing_m;
     return std::make_shared<traj::Lemniscate>(p);
   }
   if (o.kind == "landing") {
@@ -48,8 +49,11 @@ std::shared_ptr<const traj::Trajectory> makeTrajectory(const TrajectoryOptions& 
 
 std::string describe(const TrajectoryOptions& o) {
   if (o.lemniscate) {
-    return fmt::format("lemniscate ±{} m × ±{} m at {} m, {} m/s peak, {} lap{}", o.extent_x_m,
-                       o.extent_y_m, o.height_m, o.speed_mps, o.laps, o.laps == 1 ? "" : "s");
+    const std::string at = o.height_swing_m > 0.0
+                               ? fmt::format("{}–{} m", o.height_m, o.height_m + o.height_swing_m)
+                               : fmt::format("{} m", o.height_m);
+    return fmt::format("lemniscate ±{} m × ±{} m at {}, {} m/s peak, {} lap{}", o.extent_x_m,
+                       o.extent_y_m, at, o.speed_mps, o.laps, o.laps == 1 ? "" : "s");
   }
   if (o.kind == "landing") {
     return fmt::format("landing from {} m at {} m/s, flare from {} m above the gear to {} m/s",

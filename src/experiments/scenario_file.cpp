@@ -92,6 +92,7 @@ std::shared_ptr<const traj::Trajectory> readTrajectory(io::MapReader& t) {
     p.laps = static_cast<int>(t.integer("laps", 1, 1000));
     p.ramp_time_s = t.finiteNumber("ramp_time_s");
     p.yaw_rad = t.finiteNumber("yaw_deg") * model::kDegToRad;
+    if (t.has("height_swing_m")) p.height_swing_m = t.finiteNumber("height_swing_m");  // optional
     t.rejectUnknownKeys();
     return buildOrReport(t, "type", [&] { return std::make_shared<const traj::Lemniscate>(p); });
   }

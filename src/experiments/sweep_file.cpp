@@ -170,7 +170,11 @@ SweepScenario readScenario(io::MapReader& m, const std::filesystem::path& base, 
     p.half_extent_y_m = m.finiteNumber("half_extent_y_m");
     if (m.has("laps")) p.laps = static_cast<int>(m.integer("laps", 1, 1000));
     if (m.has("ramp_time_s")) p.ramp_time_s = m.finiteNumber("ramp_time_s");
-    default_name = fmt::format("lem-{:g}m-{:g}mps", p.height_m, p.peak_speed_mps);
+    if (m.has("height_swing_m")) p.height_swing_m = m.finiteNumber("height_swing_m");
+    default_name = p.height_swing_m > 0.0
+                       ? fmt::format("lem-{:g}-{:g}m-{:g}mps", p.height_m, p.height_m + p.height_swing_m,
+                                     p.peak_speed_mps)
+                       : fmt::format("lem-{:g}m-{:g}mps", p.height_m, p.peak_speed_mps);
     if (m.problemCount() == 0) {
       const auto problems = p.validate();
       if (!problems.empty()) {

@@ -48,6 +48,9 @@ std::vector<std::string> LemniscateParams::validate() const {
     out.push_back(describe("half_extent_y_m", half_extent_y_m, "finite > 0"));
   }
   if (!positive(height_m)) out.push_back(describe("height_m", height_m, "finite > 0"));
+  if (!nonNegative(height_swing_m)) {
+    out.push_back(describe("height_swing_m", height_swing_m, "finite >= 0"));
+  }
   if (!positive(peak_speed_mps)) {
     out.push_back(describe("peak_speed_mps", peak_speed_mps, "finite > 0"));
   }
@@ -86,12 +89,22 @@ FlatOutput Lemniscate::sample(double t_s) const noexcept {
   const double s2 = std::sin(2.0 * th.s);
   const double c2 = std::cos(2.0 * th.s);
 
-  // Derivatives of the curve with respect to θ, P⁽ᵏ⁾(θ) [m/radᵏ]; z is constant.
-  const Eigen::Vector3d p0(a * s1, b * s2, 0.0);
-  const Eigen::Vector3d p1(a * c1, 2.0 * b * c2, 0.0);
-  const Eigen::Vector3d p2(-a * s1, -4.0 * b * s2, 0.0);
-  const Eigen::Vector3d p3(-a * c1, -8.0 * b * c2, 0.0);
-  const Eigen::Vector3d p4(a * s1, 16.0 * b * s2, 0.0);
+  // Derivatives of the curve with respect to θ, P⁽ᵏ⁾(θ) [m/radᵏ].
+  Eigen::Vector3d p0(a * s1, b * s2, 0.0);
+  Eigen::Vector3d p1(a * c1, 2.0 * b * c2, 0.0);
+  Eigen::Vector3d p2(-a * s1, -4.0 * b * s2, 0.0);
+  Eigen::Vector3d p3(-a * c1, -8.0 * b * c2, 0.0);
+  Eigen::Vector3d p4(a * s1, 16.0 * b * s2, 0.0);
+  if (params_.height_swing_m > 0.0) {
+    // z = swing·(1 − cos θ)/2 and its θ-derivatives; skipped for a level flight, whose z terms
+    // stay exactly +0 (a −0 would change nothing but the bits).
+    const double h = 0.5 * params_.height_swing_m;
+    p0.z() = h * (1.0 - c1);
+    p1.z() = h * s1;
+    p2.z() = h * c1;
+    p3.z() = -h * s1;
+    p4.z() = -h * c1;
+  }
 
   // Chain rule up to the fourth derivative (Faà di Bruno) for p(t) = P(θ(t)).
   const double w1 = th.s_dot;

@@ -145,6 +145,40 @@ TEST(Lemniscate, EachDerivativeIsTheFiniteDifferenceOfTheOneBelow) {
   }
 }
 
+TEST(Lemniscate, AHeightSwingRisesMidLapAndItsDerivativesAreExact) {
+  LemniscateParams p = offsetParams();
+  p.height_m = 0.1;
+  p.height_swing_m = 0.2;
+  const Lemniscate traj(p);
+  // z = 0.1 + 0.1·(1 − cos θ): 0.1 m at each centre crossing of θ = 0, 2π, 4π; 0.3 m at θ = π, 3π.
+  EXPECT_NEAR(traj.sample(0.0).p_W.z(), 0.1, 1e-15);
+  EXPECT_NEAR(traj.sample(traj.duration()).p_W.z(), 0.1, 1e-12);
+  double lo = 1.0, hi = 0.0;
+  for (int i = 0; i <= 4000; ++i) {
+    const double z = traj.sample(traj.duration() * i / 4000.0).p_W.z();
+    lo = std::min(lo, z);
+    hi = std::max(hi, z);
+  }
+  EXPECT_NEAR(lo, 0.1, 1e-12);
+  EXPECT_NEAR(hi, 0.3, 1e-5);
+  const double h = 1e-3;
+  for (int i = 1; i < 200; ++i) {
+    const double t = traj.duration() * i / 200.0;
+    if (std::abs(t - p.ramp_time_s) < 2.5 * h || std::abs(t - (traj.duration() - p.ramp_time_s)) < 2.5 * h) continue;
+    geaware_test::expectDerivativesMatchFiniteDifferences(traj, t, h, 1e-8);
+  }
+  // No swing: z exactly the height, every z derivative exactly +0 (the paper's flights unchanged).
+  const Lemniscate level(offsetParams());
+  for (double t : {0.3, 2.0, 5.0, 9.0}) {
+    const auto o = level.sample(t);
+    EXPECT_EQ(o.p_W.z(), 1.0);
+    EXPECT_FALSE(std::signbit(o.v_W.z()) || std::signbit(o.a_W.z()) || std::signbit(o.j_W.z()) ||
+                 std::signbit(o.s_W.z()));
+  }
+  p.height_swing_m = -0.1;
+  EXPECT_EQ(p.validate().size(), 1u);
+}
+
 TEST(Lemniscate, IsContinuousUpToSnapAtTheRampJoints) {
   // At δ = 1e-10 a continuous quantity changes by ≤ δ·|p⁽⁵⁾| ≈ 1e-10·1e3; tolerance 1e-6.
   const Lemniscate traj{LemniscateParams{}};

@@ -31,6 +31,15 @@ struct LandDetectorParams {
   [[nodiscard]] std::vector<model::FieldError> validate() const;
 };
 
+/// Before a take-off (a flight that starts standing on the gear): whether the reference still
+/// stands on the ground, from the controller's view — not rising (v_z ≤ 1 cm/s) and, with a
+/// valid ranger height, at most `margin_m` above the gear's height over the ground under the
+/// vehicle. The flight controller keeps the motors at idle until it does not (armed, not yet
+/// flying), as autopilots do: a position loop asked to hover at the gear's exact height would
+/// hop on the cushion.
+[[nodiscard]] bool referenceOnTheGround(const ControllerInput& in, double gear_height_m,
+                                        double margin_m) noexcept;
+
 class LandDetector {
  public:
   /// `gear_height_m`: the rotor-plane height standing on the gear (the vehicle file's

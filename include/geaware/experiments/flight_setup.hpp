@@ -22,6 +22,7 @@ struct TrajectoryOptions {
   double extent_x_m = 1.5;   ///< lemniscate half extents [m]
   double extent_y_m = 0.8;
   int laps = 1;
+  double height_swing_m = 0.0;  ///< lemniscate: the height's swing over each lap (traj::LemniscateParams) [m]
   double from_height_m = 1.5;  ///< descent (and landing) start height [m]
   /// Landing and take-off: the rotor plane's z standing on the gear, the vehicle file's
   /// min_rotor_plane_height_m over flat ground at z = 0 [m].
