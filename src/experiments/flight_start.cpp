@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include "flight_internal.hpp"
@@ -57,15 +58,21 @@ sim::PlantState restingState(const sim::TruthParams& truth, const sim::Terrain& 
   const traj::FlatOutput first = trajectory.sample(0.0);
   sim::PlantState x0;
   x0.q_WB = Eigen::Quaterniond(Eigen::AngleAxisd(first.yaw_rad, Eigen::Vector3d::UnitZ()));
-  double lowest_foot_z = 0.0;  // body z of the lowest foot (negative: below the rotor plane)
-  for (const Eigen::Vector3d& f : truth.landing_feet_B) lowest_foot_z = std::min(lowest_foot_z, f.z());
+  // Level, so that the foot standing highest above its own patch of surface touches it and no
+  // foot starts under the surface (uneven ground: the others hang until the legs settle).
+  const Eigen::Matrix3d R = x0.q_WB.toRotationMatrix();
+  double z = -std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector3d& f : truth.landing_feet_B) {
+    const Eigen::Vector3d r_W = R * f;
+    z = std::max(z, terrain.heightAt(first.p_W.x() + r_W.x(), first.p_W.y() + r_W.y()) - r_W.z());
+  }
   const double n_feet = static_cast<double>(std::max<std::size_t>(1, truth.landing_feet_B.size()));
   const double sag_m = truth.landing_gear.stiffness_N_per_m > 0.0
                            ? truth.mass_kg * truth.gravity_mps2 /
                                  (n_feet * truth.landing_gear.stiffness_N_per_m)
                            : 0.0;
-  const double ground_z = terrain.heightAt(first.p_W.x(), first.p_W.y());
-  x0.p_W = Eigen::Vector3d(first.p_W.x(), first.p_W.y(), ground_z - lowest_foot_z - sag_m);
+  if (!std::isfinite(z)) z = terrain.heightAt(first.p_W.x(), first.p_W.y());  // no feet (refused by validate)
+  x0.p_W = Eigen::Vector3d(first.p_W.x(), first.p_W.y(), z - sag_m);
   x0.n_rpm = {0.0, 0.0, 0.0, 0.0};
   return x0;
 }

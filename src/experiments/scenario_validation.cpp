@@ -13,9 +13,17 @@
 #include "geaware/flatness/flat_map.hpp"
 #include "geaware/model/field_check.hpp"
 #include "geaware/model/vehicle_model.hpp"
+#include "geaware/traj/touchdown.hpp"
 
 namespace geaware::experiments {
 namespace {
+
+/// The touchdown height of a landing or take-off reference; null for other trajectories.
+const double* touchdownHeightOf(const traj::Trajectory* t) {
+  if (const auto* l = dynamic_cast<const traj::Landing*>(t)) return &l->params().touchdown_height_m;
+  if (const auto* o = dynamic_cast<const traj::TakeOff*>(t)) return &o->params().touchdown_height_m;
+  return nullptr;
+}
 
 using detail::decimationOf;
 using detail::heightAbove;
@@ -162,6 +170,27 @@ std::vector<ScenarioProblem> validate(const FlightScenario& s, ScenarioStage sta
   if (s.start_on_ground && !s.plant.ground_contact) {
     out.push_back({"start_on_ground", "true",
                    "plant.ground_contact on (a vehicle standing on its gear needs the contact model)"});
+  }
+  if (s.plant.ground_contact && (s.start_on_ground || s.land_detector) && vehicle_errors.empty()) {
+    const sim::TruthParams truth = s.truth ? *s.truth : sim::fromNominal(s.vehicle);
+    if (!truth.landing_gear.enabled() || truth.landing_feet_B.size() < 3) {
+      out.push_back({"truth.landing_gear.stiffness_N_per_m", show(truth.landing_gear.stiffness_N_per_m),
+                     "a landing gear with stiffness > 0 on at least 3 feet for a landing or take-off (" +
+                         std::to_string(truth.landing_feet_B.size()) + " feet)"});
+    }
+  }
+  // A landing or take-off reference meets the surface where the vehicle file's gear does.
+  if (const double* td = touchdownHeightOf(s.trajectory.get()); td != nullptr && vehicle_errors.empty()) {
+    const Eigen::Vector3d last = s.trajectory->sample(s.trajectory->duration()).p_W;
+    const auto terrain = detail::terrainOf(s);
+    const double surface_m = terrain->heightAt(last.x(), last.y());
+    const double expected = surface_m + s.vehicle.min_rotor_plane_height_m;
+    if (!(std::abs(*td - expected) <= 0.02)) {
+      out.push_back({"trajectory.touchdown_height_m", show(*td),
+                     "the surface under the point (" + show(surface_m) + " m) + the vehicle's "
+                     "min_rotor_plane_height_m (" + show(s.vehicle.min_rotor_plane_height_m) +
+                     " m) = " + show(expected) + " m, within 0.02 m"});
+    }
   }
   if (s.land_detector) append(out, s.land_detector->validate(), "land_detector.");
   if (std::abs(s.eskf.imu_rate_hz - s.sensors.imu.rate_Hz) > 1e-9 * s.sensors.imu.rate_Hz) {

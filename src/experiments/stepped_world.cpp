@@ -19,6 +19,11 @@ const FlightScenario& checked(const FlightScenario& s) {
   if (s.loop != LoopMode::kClosed) {
     throw std::invalid_argument("the stepped simulator flies closed loop only (scenario.loop)");
   }
+  if (s.start_on_ground || s.land_detector) {
+    throw std::invalid_argument(
+        "the stepped simulator does not fly landings and take-offs yet (scenario.start_on_ground, "
+        "scenario.land_detector): fly them with runFlight (`geaware fly`, `geaware sweep`)");
+  }
   if (auto problems = validate(s); !problems.empty()) throw InvalidScenario(std::move(problems));
   return s;
 }

@@ -50,6 +50,10 @@ std::vector<std::string> LemniscateParams::validate() const {
   if (!positive(height_m)) out.push_back(describe("height_m", height_m, "finite > 0"));
   if (!nonNegative(height_swing_m)) {
     out.push_back(describe("height_swing_m", height_swing_m, "finite >= 0"));
+  } else if (positive(half_extent_x_m) && height_swing_m > 2.0 * half_extent_x_m) {
+    // |dP/dθ|² = A²·cos²θ + 4B²·cos²2θ + (S/2)²·sin²θ peaks at θ = 0 only while S ≤ 2A: beyond,
+    // the cruise rate from v_peak/√(A² + 4B²) would fly faster than v_peak.
+    out.push_back(describe("height_swing_m", height_swing_m, "at most 2·half_extent_x_m"));
   }
   if (!positive(peak_speed_mps)) {
     out.push_back(describe("peak_speed_mps", peak_speed_mps, "finite > 0"));

@@ -34,7 +34,8 @@ void commonChecks(std::vector<std::string>& out, const Eigen::Vector2d& xy, doub
     os << "position_xy_m = (" << xy.x() << ", " << xy.y() << ") (expected finite)";
     out.push_back(os.str());
   }
-  if (!nonNegative(ramp_time_s)) out.push_back(describe("ramp_time_s", ramp_time_s, "finite >= 0"));
+  // > 0: a zero ramp would step the speed, and these references are continuous up to snap.
+  if (!positive(ramp_time_s)) out.push_back(describe("ramp_time_s", ramp_time_s, "finite > 0"));
   if (!nonNegative(hold_start_s)) out.push_back(describe("hold_start_s", hold_start_s, "finite >= 0"));
   if (!nonNegative(hold_end_s)) out.push_back(describe("hold_end_s", hold_end_s, "finite >= 0"));
   if (!std::isfinite(yaw_rad)) out.push_back(describe("yaw_rad", yaw_rad, "finite"));

@@ -4,6 +4,8 @@
 // detector takes the motors down; without the contact model the same landing ends in a strike
 // of a foot (the behaviour before it); a take-off leaves the ground at the climb, level, once.
 #include <cmath>
+#include <memory>
+#include <numbers>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -13,6 +15,8 @@
 #include "geaware/experiments/flight_setup.hpp"
 #include "geaware/experiments/world_setup.hpp"
 #include "geaware/io/vehicle_file.hpp"
+#include "geaware/sim/terrains.hpp"
+#include "geaware/traj/touchdown.hpp"
 
 namespace geaware::experiments {
 namespace {
@@ -96,6 +100,47 @@ TEST(TouchdownFlight, StandingOnTheGearNeedsTheContactModel) {
   const auto bad = validate(s);
   ASSERT_EQ(bad.size(), 1u);
   EXPECT_EQ(bad[0].field, "land_detector.confirm_s");
+}
+
+TEST(TouchdownFlight, AGearWithoutLegsOrAReferenceBesideTheSurfaceIsRefused) {
+  FlightScenario s = touchdownFlight("recommended", "takeoff", 1);
+  ASSERT_TRUE(validate(s).empty());
+  // Legs of stiffness 0 (the truth file's "no contact model") cannot hold the vehicle.
+  s.truth = sim::fromNominal(s.vehicle);
+  s.truth->landing_gear.stiffness_N_per_m = 0.0;
+  const auto legs = validate(s);
+  ASSERT_EQ(legs.size(), 1u);
+  EXPECT_EQ(legs[0].field, "truth.landing_gear.stiffness_N_per_m");
+  // A touchdown height 5 cm above where the vehicle file's gear meets the floor.
+  FlightScenario high = touchdownFlight("recommended", "landing", 1);
+  TrajectoryOptions t;
+  t.lemniscate = false;
+  t.kind = "landing";
+  t.from_height_m = 1.0;
+  t.speed_mps = 0.5;
+  t.touchdown_height_m = high.vehicle.min_rotor_plane_height_m + 0.05;
+  high.trajectory = makeTrajectory(t);
+  const auto off = validate(high);
+  ASSERT_EQ(off.size(), 1u);
+  EXPECT_EQ(off[0].field, "trajectory.touchdown_height_m");
+  EXPECT_NE(off[0].expected.find("within 0.02 m"), std::string::npos);
+}
+
+TEST(TouchdownFlight, OnUnevenGroundTheTakeOffStartsWithNoFootUnderTheSurface) {
+  FlightScenario s = touchdownFlight("recommended", "takeoff", 1);
+  // A 10° slope under the take-off point: the uphill feet touch, the others hang.
+  s.terrain = std::make_shared<sim::TiltedPlane>(
+      sim::TiltedPlane::fromTilt(Eigen::Vector3d::Zero(), 0.0, 10.0 * std::numbers::pi / 180.0));
+  s.check_feasibility = false;
+  s.trajectory = std::make_shared<traj::TakeOff>([&] {
+    traj::TakeOffParams p;
+    p.touchdown_height_m = s.vehicle.min_rotor_plane_height_m;  // the surface is at 0 under (0, 0)
+    p.to_height_m = 1.0;
+    return p;
+  }());
+  const FlightResult r = runFlight(s);
+  ASSERT_FALSE(r.crash) << r.crash_description;
+  EXPECT_LT(r.ground_contact->max_compression_m, 0.01);
 }
 
 }  // namespace

@@ -131,10 +131,15 @@ def test_a_dask_scheduler_and_workers_started_as_on_other_machines(serial, spec,
     procs = [subprocess.Popen(["dask-scheduler", "--scheduler-file", str(file), "--host", "127.0.0.1",
                                "--no-dashboard"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)]
     try:
+        # The scheduler writes its file in place: it may exist and still be empty or partial.
         deadline = time.monotonic() + 60
-        while not file.exists() and time.monotonic() < deadline:
-            time.sleep(0.1)
-        address = json.loads(file.read_text())["address"]
+        address = None
+        while address is None and time.monotonic() < deadline:
+            try:
+                address = json.loads(file.read_text())["address"]
+            except (OSError, ValueError, KeyError):
+                time.sleep(0.1)
+        assert address is not None, f"dask-scheduler wrote no address into {file} within 60 s"
         assert address.startswith("tcp://127.0.0.1:")
         procs.append(subprocess.Popen(["dask-worker", address, "--nthreads", "1", "--nworkers", "2",
                                        "--no-dashboard"], env=env, stdout=subprocess.DEVNULL,

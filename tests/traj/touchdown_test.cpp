@@ -87,6 +87,10 @@ TEST(Landing, EveryInvalidParameterIsNamed) {
   ASSERT_EQ(room.size(), 1u);
   EXPECT_NE(room[0].find("from_height_m = 0.5 (expected >= 0.622"), std::string::npos);
   EXPECT_THROW(Landing{low}, std::invalid_argument);
+  LandingParams step = landing();
+  step.ramp_time_s = 0.0;  // a speed step: not continuous up to snap
+  ASSERT_EQ(step.validate().size(), 1u);
+  EXPECT_NE(step.validate()[0].find("ramp_time_s"), std::string::npos);
 }
 
 TEST(TakeOff, ClimbsFromTheGearToTheHoverHeight) {

@@ -11,7 +11,7 @@
 //   friction      F_t = −μ·F_n·v_t / √(|v_t|² + v_s²),   v_t = v_k − (v_k·n)·n
 // with c = 2·ζ·√(k·m/N) the damping of the foot's share of the mass (N feet). The friction is
 // Coulomb's, regularised below the slip speed v_s: a foot standing still on a slope creeps at
-// about v_s·tan(slope)/μ instead of sticking (documented in docs/sim-aerodynamics.md).
+// v_s·tan θ/√(μ² − tan² θ) instead of sticking (docs/world.md §9).
 //
 // Closed forms (tests/sim/ground_contact_test.cpp): on level ground at rest each of N feet is
 // compressed by m·g/(N·k); a level drop at v₀ onto N feet without gravity leaves at the

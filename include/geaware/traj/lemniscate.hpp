@@ -25,7 +25,7 @@ struct LemniscateParams {
   double height_m = 0.18;       ///< z of the flight (its lowest with a swing), world frame [m]
   /// The height's swing over each lap: z = height_m + swing·(1 − cos θ)/2, from height_m at
   /// the start (θ = 0) to height_m + swing at the middle of each lap and back (0: a level
-  /// flight, the paper's) [m].
+  /// flight, the paper's); at most 2·half_extent_x_m, so that the peak speed stays v_peak [m].
   double height_swing_m = 0.0;
   double peak_speed_mps = 3.0;  ///< speed at the centre crossings during the cruise [m/s]
   int laps = 1;                 ///< number of full figure-eights [-]
