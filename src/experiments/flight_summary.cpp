@@ -76,22 +76,25 @@ io::Json flightJson(const FlightScenario& s, const FlightResult& r) {
   j["flags"] = std::move(flags);
   j["guard_active_s"] = r.guard_active_s ? io::Json(*r.guard_active_s) : io::Json(nullptr);
   if (const auto& g = r.ground_contact) {
-    const auto number = [](double v) { return std::isnan(v) ? io::Json(nullptr) : io::Json(v); };
-    j["touchdown_speed_mps"] = number(g->touchdown_speed_mps);
-    j["bounce_m"] = std::isnan(g->touchdown_t_s) ? io::Json(nullptr) : io::Json(g->bounce_m);
-    j["ground_contact"] = {{"touchdown_t_s", number(g->touchdown_t_s)},
+    j.update(touchdownJson(*g));  // NaN is written as null
+    j["ground_contact"] = {{"touchdown_t_s", g->touchdown_t_s},
                            {"max_compression_m", g->max_compression_m},
                            {"max_tilt_on_ground_deg", g->max_tilt_on_ground_deg},
-                           {"liftoff_t_s", number(g->liftoff_t_s)},
+                           {"liftoff_t_s", g->liftoff_t_s},
                            {"recontacts", g->recontacts},
                            {"landed", g->landed},
-                           {"landed_t_s", number(g->landed_t_s)},
+                           {"landed_t_s", g->landed_t_s},
                            {"feet_down_at_end", g->feet_down_at_end}};
   }
   j["simulated_s"] = r.simulated_s;
   j["wall_s"] = r.wall_s;
   j["real_time_factor"] = r.real_time_factor;
   return j;
+}
+
+io::Json touchdownJson(const GroundContactSummary& g) {
+  return {{"touchdown_speed_mps", g.touchdown_speed_mps},
+          {"bounce_m", std::isnan(g.touchdown_t_s) ? std::nan("") : g.bounce_m}};
 }
 
 std::filesystem::path writeFlightReport(const std::filesystem::path& dir, const FlightSeries& series,

@@ -7,6 +7,7 @@
 #include "geaware/experiments/sweep.hpp"
 
 #include "geaware/experiments/flight_setup.hpp"
+#include "geaware/experiments/flight_summary.hpp"
 
 #include <fmt/format.h>
 
@@ -286,11 +287,9 @@ std::string sweepRecord(const SweepSpec& spec, const SweepKey& k, const FlightRe
   j["simulated_s"] = r.simulated_s;
   if (const auto& g = r.ground_contact) {
     // Landings and take-offs (flights with ground contact) only: other records keep their bytes.
-    const auto number = [](double v) { return std::isnan(v) ? io::Json(nullptr) : io::Json(v); };
-    j["touchdown_speed_mps"] = number(g->touchdown_speed_mps);
-    j["bounce_m"] = std::isnan(g->touchdown_t_s) ? io::Json(nullptr) : io::Json(g->bounce_m);
+    j.update(touchdownJson(*g));
     j["landed"] = g->landed;
-    j["liftoff_t_s"] = number(g->liftoff_t_s);
+    j["liftoff_t_s"] = g->liftoff_t_s;
     j["recontacts"] = g->recontacts;
     j["max_tilt_on_ground_deg"] = g->max_tilt_on_ground_deg;
   }

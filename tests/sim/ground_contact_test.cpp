@@ -48,6 +48,7 @@ TEST(GroundContact, TheDefaultGearIsDocumented) {
   ASSERT_EQ(p.landing_feet_B.size(), 4u);
   EXPECT_NEAR(p.landing_gear.stiffness_N_per_m,
               p.mass_kg * p.gravity_mps2 / (4.0 * kDefaultGearStaticDeflectionM), 1e-9);
+  EXPECT_NEAR(p.landing_gear.stiffness_N_per_m, 1386.48, 0.005);  // docs/world.md §9, config/truths/ideal.yaml
   EXPECT_EQ(p.landing_gear.damping_ratio, kDefaultGearDampingRatio);
   EXPECT_EQ(p.landing_gear.friction_coefficient, kDefaultGearFrictionCoefficient);
   EXPECT_EQ(p.landing_gear.max_compression_m, kDefaultGearMaxCompressionM);

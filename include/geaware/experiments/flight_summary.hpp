@@ -26,6 +26,10 @@ namespace geaware::experiments {
 /// (docs/closed-loop.md); NaN as null.
 [[nodiscard]] io::Json flightJson(const FlightScenario& s, const FlightResult& r);
 
+/// A landing's touchdown as `fly --json` and sweep records write it: "touchdown_speed_mps" and
+/// "bounce_m" (NaN, written as null, without a touchdown).
+[[nodiscard]] io::Json touchdownJson(const GroundContactSummary& g);
+
 /// Writes DIR/flight.html (creating DIR) from the flight's series and returns its path: the
 /// metrics, the provenance, the trajectory from above (equal aspect), the height over the
 /// terrain, the errors, the rotor speeds and torques. Throws std::runtime_error when DIR exists
