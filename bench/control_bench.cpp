@@ -2,7 +2,8 @@
 // One full controller update (flat map to throttles) for the paper's configurations.
 // Targets: ≤ 1 µs median for model/model_indi (issue 1); ≤ 300 ns for model:model_indi and
 // ≤ 400 ns for `recommended` (issue 15, not met: docs/benchmarks.md); with per-rotor ground
-// effect ("+rotors") ≤ 1.3× model:model_indi (issue 13). Inputs cycle through 1024
+// effect ("+rotors") and with the ceiling and wall terms ("+proximity", beams that see
+// surfaces) ≤ 1.3× model:model_indi (issue 13). Inputs cycle through 1024
 // samples of the 1 m/s lemniscate at 0.12 m with a perturbed estimate and a disturbance-observer
 // estimate, so every branch does real work.
 #include <cmath>
@@ -121,3 +122,38 @@ void BM_ControllerRecommendedPerRotor(benchmark::State& s) { runNamed(s, "recomm
 BENCHMARK(BM_ControllerRecommendedPerRotor);
 
 }  // namespace
+
+/// Ceilings and walls (issue 13 item 4; the same ≤ 1.3× target): the inputs above with an
+/// upward beam that sees a ceiling 0.15–0.25 m away and a sideways one that sees a wall at
+/// 0.33 m, so every rotor's image terms are computed.
+const std::vector<ControllerInput>& beamInputs() {
+  static const std::vector<ControllerInput> in = [] {
+    std::vector<ControllerInput> out = inputs();
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      ControllerInput& c = out[i];
+      c.beams[0].direction_B = Eigen::Vector3d::UnitZ();
+      c.beams[0].range_m = 0.2 + 0.05 * std::sin(0.01 * static_cast<double>(i));
+      c.beams[0].valid = true;
+      c.beams[1].direction_B = Eigen::Vector3d::UnitY();
+      c.beams[1].range_m = 0.33;
+      c.beams[1].valid = true;
+    }
+    return out;
+  }();
+  return in;
+}
+void runBeams(benchmark::State& s, const char* name) {
+  ControllerParams p;
+  if (!parseConfiguration(name, p)) {
+    s.SkipWithError("not a configuration");
+    return;
+  }
+  Controller c(vehicle(), p);
+  const auto& in = beamInputs();
+  std::size_t i = 0;
+  for (auto _ : s) benchmark::DoNotOptimize(c.update(in[i++ & 1023]));
+}
+void BM_ControllerModelModelIndiProximity(benchmark::State& s) { runBeams(s, "model:model_indi+proximity"); }
+BENCHMARK(BM_ControllerModelModelIndiProximity);
+void BM_ControllerRecommendedUnderACeiling(benchmark::State& s) { runBeams(s, "recommended"); }
+BENCHMARK(BM_ControllerRecommendedUnderACeiling);

@@ -70,10 +70,11 @@ const CLI::Validator kControllerSpec(
       return "--controller '" + text +
              "': expected 'recommended' or ACC:TORQUE with ACC one of none, indi, neural, model "
              "and TORQUE one of none, model, indi, model_indi (e.g. model:model_indi), optionally "
-             "followed by +rotors (per-rotor ground effect from the ranger), then by +learn or "
-             "+learn0 (F_G learned in flight)";
+             "followed by +proximity (ceiling and wall feed-forward; recommended has it), then by "
+             "+rotors (per-rotor ground effect from the ranger), then by +learn or +learn0 (F_G "
+             "learned in flight)";
     },
-    "recommended|ACC:TORQUE[+rotors][+learn|+learn0]");
+    "recommended|ACC:TORQUE[+proximity][+rotors][+learn|+learn0]");
 
 experiments::TrajectoryOptions flightPlan(const FlyOptions& o) {
   experiments::TrajectoryOptions p;
@@ -282,8 +283,9 @@ void addFlightOptions(CLI::App* cmd, FlyOptions& o) {
                   "recommended (geaware's: model:model_indi with disturbance feed-forward, "
                   "integral action and a clearance guard; docs/controller.md) or ACC:TORQUE, ACC "
                   "in none|indi|neural|model, TORQUE in none|model|indi|model_indi (the paper's: "
-                  "model:model_indi), optionally followed by +rotors (per-rotor ground effect) and "
-                  "+learn or +learn0 (F_G learned in flight); replaces a scenario file's")
+                  "model:model_indi), optionally followed by +proximity (ceiling and wall "
+                  "feed-forward, in recommended), +rotors (per-rotor ground effect) and +learn or "
+                  "+learn0 (F_G learned in flight); replaces a scenario file's")
       ->check(kControllerSpec);
   cmd->add_option("--seed", o.seed, "seed of sensors and disturbances; replaces a scenario file's")->capture_default_str()->check(seed());
   cmd->add_flag("--no-turbulence", o.no_turbulence, "switch off the near-ground turbulence");

@@ -80,6 +80,7 @@ Controller::Controller(const model::VehicleModel& vehicle, ControllerParams para
       min_rotor_plane_height_m_(vehicle.params().min_rotor_plane_height_m),
       arm_m_(0.5 * vehicle.params().diagonal_rotor_distance_m),
       rotors_B_(model::Mixer::rotorPositions_B(vehicle.params().diagonal_rotor_distance_m)),
+      propeller_radius_m_(vehicle.params().propeller_radius_m),
       mem_(params_.filter_cutoff_hz, params_.rate_hz, detail::kFarFromGroundM) {
   if (params_.acceleration == AccelerationCompensation::kNeural && !residual_) {
     throw std::invalid_argument("acceleration compensation 'neural' needs a residual-force model");
@@ -93,6 +94,7 @@ Controller::Controller(const model::VehicleModel& vehicle, ControllerParams para
 
 void Controller::reset() noexcept {
   mem_ = Memory(params_.filter_cutoff_hz, params_.rate_hz, detail::kFarFromGroundM);
+  beam_mem_ = BeamMemory();
 }
 
 ControllerOutput Controller::fallback(std::uint32_t flags) const noexcept {
@@ -181,7 +183,8 @@ Controller::Measured Controller::measure(const ControllerInput& in,
 
 Eigen::Vector3d Controller::disturbanceResidual(const ControllerInput& in, double thrust_ref_N,
                                                 const Eigen::Matrix3d& R,
-                                                const Eigen::Vector3d& a_shape_W) noexcept {
+                                                const Eigen::Vector3d& a_shape_W,
+                                                const Eigen::Vector3d& a_prox_W) noexcept {
   if (!(params_.dob_time_constant_s > 0.0)) return Eigen::Vector3d::Zero();
   if (in.external_accel_valid && in.external_accel_W.allFinite()) {
     // What the model already accounts for in ã_ext: at the measured height, the extra thrust
@@ -195,6 +198,7 @@ Eigen::Vector3d Controller::disturbanceResidual(const ControllerInput& in, doubl
     Eigen::Vector3d explained = model::RotorDragModel::force_W(R, in.estimate.v_W, d) / mass_kg_;
     if (model) explained += mem_.fade_est_ * ground_effect_.thrustRatio(h) * thrust_ref_N / mass_kg_ * R.col(2);
     if (params_.per_rotor_ground_effect) explained += a_shape_W;  // partial ground effect
+    if (params_.proximity_compensation) explained += a_prox_W;    // ceiling and walls
     const double lim = params_.dob_limit_mps2;
     const Eigen::Vector3d raw = (in.external_accel_W - explained).cwiseMax(-lim).cwiseMin(lim);
     // First-order low-pass, backward Euler: τ_d·ḋ = raw − d; like every filter of the
@@ -235,9 +239,10 @@ Eigen::Vector3d Controller::integralTerm(const Eigen::Vector3d& e_p, std::uint32
 
 Controller::Additions Controller::additions(const ControllerInput& in, double thrust_ref_N,
                                             const Eigen::Matrix3d& R, const Eigen::Vector3d& a_shape_W,
-                                            std::uint32_t& flags) noexcept {
+                                            const Eigen::Vector3d& a_prox_W, std::uint32_t& flags) noexcept {
   Additions x;
   x.a_shape = a_shape_W;
+  x.a_prox = a_prox_W;
   x.reference = in.reference;
   if (params_.clearance_guard && mem_.have_ground_) {
     // The floor: the landing gear's rotor-plane height plus the margin above the ground the
@@ -266,7 +271,7 @@ Controller::Additions Controller::additions(const ControllerInput& in, double th
     }
   }
   x.a_int = integralTerm(x.reference.p_W - in.estimate.p_W, flags);
-  x.a_dob = disturbanceResidual(in, thrust_ref_N, R, a_shape_W);
+  x.a_dob = disturbanceResidual(in, thrust_ref_N, R, a_shape_W, a_prox_W);
   return x;
 }
 
@@ -307,6 +312,7 @@ Eigen::Vector3d Controller::thrustVectorCommand(const ControllerInput& in,
       a_des -= model::RotorDragModel::force_W(R, r.v_W, d) / mass_kg_;
       if (model) a_des -= ref.thrust_N / mass_kg_ * mem_.fade_ref_ * ground_effect_.thrustRatio(h) * z_B;  // a_G
       if (params_.per_rotor_ground_effect) a_des -= x.a_shape;  // zero unless acceleration model
+      if (params_.proximity_compensation) a_des -= x.a_prox;    // ceiling and wall effects
       f_cmd = a_des + Eigen::Vector3d(0.0, 0.0, kGravity);
       if (params_.acceleration == AccelerationCompensation::kNeural) {
         // Shi et al. 2019: the residual depends on the rotor speeds the command produces, so
@@ -391,7 +397,8 @@ ControllerOutput Controller::step(const ControllerInput& in) noexcept {
   // 2. Acceleration command (paper eq. 31, with geaware's additions when switched on) and the
   //    specific thrust vector.
   const GroundShapeTerms shape = groundShapeTerms(in, h, ref.thrust_N, R);
-  const Additions x = additions(in, ref.thrust_N, R, shape.a_W, flags);
+  const GroundShapeTerms prox = proximityTerms(in, ref.thrust_N, R);
+  const Additions x = additions(in, ref.thrust_N, R, shape.a_W, prox.a_W, flags);
   Eigen::Vector3d a_des;
   const Eigen::Vector3d f_cmd = thrustVectorCommand(in, ref, h, m, x, a_des, flags);
 
@@ -420,6 +427,11 @@ ControllerOutput Controller::step(const ControllerInput& in) noexcept {
     // is not cancelled twice.
     const Eigen::Vector3d held = mem_.ground_torque_filter_.update(shape.tau_B);
     tau -= detail::usesIncrementalTorque(params_.torque) ? Eigen::Vector3d(shape.tau_B - held) : shape.tau_B;
+  }
+  if (params_.proximity_compensation) {
+    // The ceiling and wall torque, likewise.
+    const Eigen::Vector3d held = mem_.proximity_torque_filter_.update(prox.tau_B);
+    tau -= detail::usesIncrementalTorque(params_.torque) ? Eigen::Vector3d(prox.tau_B - held) : prox.tau_B;
   }
 
   // 5. Rotor speeds and throttles: inverse throttle curve (at the measured battery voltage, when

@@ -44,6 +44,8 @@ void Controller::learnGroundEffect(const ControllerInput& in) noexcept {
   // Within a centimetre of the landing gear's height the feet may be on the ground (standing
   // before a take-off, touching down): its support would be learned as ground effect.
   if (in.height_m <= min_rotor_plane_height_m_ + kLearnAboveGearM) return;
+  // Under a ceiling or beside a wall the observer's estimate holds their pull too.
+  if (mem_.proximity_active_) return;
   const double thrust_acc = mem_.thrust_acc_f_mps2_;
   if (!(thrust_acc > 0.5 * model::kGravity)) return;  // not carried by the rotors
   const double cos_tilt = in.estimate.q_WB.normalized().toRotationMatrix()(2, 2);

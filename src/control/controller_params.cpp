@@ -135,7 +135,8 @@ std::vector<model::FieldError> ControllerParams::validate() const {
 
 bool ControllerParams::hasAdditions() const noexcept {
   return dob_time_constant_s > 0.0 || k_i_per_s3.any() || clearance_guard || rotor_speed_ki_per_s > 0.0 ||
-         learn_ground_effect != GroundEffectLearning::kOff || per_rotor_ground_effect;
+         learn_ground_effect != GroundEffectLearning::kOff || per_rotor_ground_effect ||
+         proximity_compensation;
 }
 
 ControllerParams recommendedControllerParams() {
@@ -159,6 +160,8 @@ ControllerParams recommendedControllerParams() {
   p.rotor_speed_ki_per_s = 15.0;
   p.rotor_speed_limit_throttle = 0.3;
   p.rotor_speed_lag_s = 0.04;
+  // Issue 13 item 4: the ceiling and wall feed-forward; nothing without a surface in a beam.
+  p.proximity_compensation = true;
   return p;
 }
 
@@ -175,7 +178,8 @@ bool sameConfiguration(const ControllerParams& p, const ControllerParams& q) {
          p.rotor_speed_ki_per_s == q.rotor_speed_ki_per_s &&
          p.rotor_speed_limit_throttle == q.rotor_speed_limit_throttle && p.rotor_speed_lag_s == q.rotor_speed_lag_s &&
          p.learn_ground_effect == q.learn_ground_effect &&
-         p.per_rotor_ground_effect == q.per_rotor_ground_effect;
+         p.per_rotor_ground_effect == q.per_rotor_ground_effect &&
+         p.proximity_compensation == q.proximity_compensation;
 }
 
 /// Copies `q`'s switches and additions into `p`.
@@ -196,6 +200,7 @@ void setConfiguration(ControllerParams& p, const ControllerParams& q) {
   p.rotor_speed_lag_s = q.rotor_speed_lag_s;
   p.learn_ground_effect = q.learn_ground_effect;
   p.per_rotor_ground_effect = q.per_rotor_ground_effect;
+  p.proximity_compensation = q.proximity_compensation;
 }
 
 }  // namespace
@@ -215,6 +220,7 @@ std::string configurationName(const ControllerParams& p) {
   if (p.k_i_per_s3.any()) name += "+integral";
   if (p.clearance_guard) name += "+guard";
   if (p.rotor_speed_ki_per_s > 0.0) name += "+speedloop";
+  if (p.proximity_compensation) name += "+proximity";
   return name + suffix;
 }
 
@@ -235,10 +241,13 @@ bool parseConfiguration(const std::string& text_with_switches, ControllerParams&
     learn = GroundEffectLearning::kFromVehicle;
   }
   const bool rotors = strip("+rotors");
+  const bool proximity = strip("+proximity");
   ControllerParams q;  // the paper's row: no additions
   if (text == "recommended") {
+    if (proximity) return false;  // recommended has it
     q = recommendedControllerParams();
   } else {
+    q.proximity_compensation = proximity;
     const auto colon = text.find(':');
     if (colon == std::string::npos || !parse(text.substr(0, colon), q.acceleration) ||
         !parse(text.substr(colon + 1), q.torque)) {

@@ -94,6 +94,13 @@ class FlightLoop {
         bins_(s.hover_bins),
         faults_(s.faults, s.seed, s.start_hover_s),
         telemetry_rpm_(Eigen::Vector4d::Constant(x0_.n_rpm[0])) {  // replaced by the first sample
+    plant_.setObstacles(s.obstacles);
+    const std::vector<sim::BeamRangerParams> beams =
+        !s.beam_rangers.empty() ? s.beam_rangers
+        : s.obstacles           ? sim::defaultBeamRangers()
+                                : std::vector<sim::BeamRangerParams>{};
+    for (std::size_t k = 0; k < beams.size(); ++k) beams_.emplace_back(beams[k], s.seed, k);
+    if (s.obstacles && !s.obstacles->empty()) result_.min_obstacle_clearance_m = std::numeric_limits<double>::infinity();
     detail::addDisturbances(s, truth_, plant_, wind_);
     if (auto kick = faults_.kickContribution()) plant_.addContribution(std::move(kick));
     // Motors at the throttle that holds the initial rotor speed.
@@ -160,6 +167,9 @@ class FlightLoop {
   void sense(double t) noexcept {
     const sim::PlantState& x = plant_.state();
     sim::SensorReadings r = sensors_.step(x, terrain_.get());
+    for (std::size_t k = 0; k < beams_.size(); ++k) {
+      if (auto b = beams_[k].sample(x, s_.obstacles.get(), terrain_.get())) beam_[k] = *b;
+    }
     if (!closed_) return;
     if (!faults_.empty()) faults_.onSensors(t, r);
     // 2. Estimator: the IMU sample first, then the pose delivered now.
@@ -210,6 +220,21 @@ class FlightLoop {
     tick_.in_trajectory = inTrajectory(t);
     tick_.truth = x;
     tick_.true_height_m = heightAbove(*terrain_, x.p_W);
+    if (result_.min_obstacle_clearance_m && tick_.in_trajectory) {
+      // Each disc's centre and eight points on its rim.
+      const Eigen::Matrix3d R = x.q_WB.toRotationMatrix();
+      const Eigen::Vector3d ex = truth_.propeller_radius_m * R.col(0);
+      const Eigen::Vector3d ey = truth_.propeller_radius_m * R.col(1);
+      double& c = *result_.min_obstacle_clearance_m;
+      for (const Eigen::Vector3d& r : truth_.rotor_position_B) {
+        const Eigen::Vector3d centre = x.p_W + R * r;
+        c = std::min(c, s_.obstacles->clearance(centre));
+        for (int k = 0; k < 8; ++k) {
+          const double th = std::numbers::pi / 4.0 * k;
+          c = std::min(c, s_.obstacles->clearance(centre + std::cos(th) * ex + std::sin(th) * ey));
+        }
+      }
+    }
     control::ControllerInput& in = tick_.input;
     in.t_s = x.t_s;
     in.reference = s_.trajectory->sample(t_traj);
@@ -235,6 +260,10 @@ class FlightLoop {
       in.ground_normal_W = ground_normal_W_;
       in.ground_shape_valid = in.height_valid;
       in.rotor_speeds_rpm = telemetry_rpm_;
+      for (std::size_t k = 0; k < beams_.size(); ++k) {
+        in.beams[k] = beam_[k];
+        in.beams[k].valid = beam_[k].valid && t - beam_[k].t_s <= s_.max_beam_age_s + 0.5 * dt_;
+      }
       // The disturbance observer (paper eq. 6) on exactly the controller's inputs.
       if (ground_idle_ &&
           !control::referenceOnTheGround(in, s_.vehicle.min_rotor_plane_height_m, 0.01)) {
@@ -369,6 +398,8 @@ class FlightLoop {
   sim::Plant plant_;
   std::optional<sim::Wind> wind_;
   sim::SensorSuite sensors_;
+  std::vector<sim::BeamRanger> beams_;  // up and sideways (scenario.beam_rangers)
+  std::array<model::BeamReading, control::ControllerInput::kMaxBeams> beam_{};  // their latest
   // The controller side: built from the nominal vehicle and sensor data only.
   std::unique_ptr<estimation::Eskf> eskf_;
   const estimation::LatticeHeightEstimator lattice_;

@@ -31,6 +31,9 @@ std::string formatFlight(const FlightResult& r) {
   }
   if (!flags.empty()) s += "controller flags (ticks): " + flags + "\n";
   if (r.guard_active_s) s += fmt::format("clearance guard active {:.3f} s\n", *r.guard_active_s);
+  if (r.min_obstacle_clearance_m) {
+    s += fmt::format("closest a rotor disc's rim came to an obstacle: {:.1f} cm\n", *r.min_obstacle_clearance_m * 100);
+  }
   if (const auto& g = r.ground_contact) {
     if (!std::isnan(g->touchdown_t_s)) {
       s += fmt::format("touchdown at {:.3f} s, sinking {:.3f} m/s; bounce {:.1f} mm; legs compressed "
@@ -75,6 +78,7 @@ io::Json flightJson(const FlightScenario& s, const FlightResult& r) {
   }
   j["flags"] = std::move(flags);
   j["guard_active_s"] = r.guard_active_s ? io::Json(*r.guard_active_s) : io::Json(nullptr);
+  if (r.min_obstacle_clearance_m) j["min_obstacle_clearance_m"] = *r.min_obstacle_clearance_m;
   if (const auto& g = r.ground_contact) {
     j.update(touchdownJson(*g));  // NaN is written as null
     j["ground_contact"] = {{"touchdown_t_s", g->touchdown_t_s},

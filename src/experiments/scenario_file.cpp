@@ -5,6 +5,9 @@
 #include <fstream>
 #include <optional>
 #include <sstream>
+#include <utility>
+
+#include <Eigen/Geometry>
 
 #include "geaware/io/input_file.hpp"
 #include "geaware/io/controller_params_file.hpp"
@@ -189,6 +192,58 @@ std::shared_ptr<const sim::Terrain> readTerrain(io::MapReader& t, const std::fil
   return out;
 }
 
+/// `obstacles:` a list of boxes (docs/scenario-file.md): type box, name, min_m, max_m (world
+/// corners before the rotation), optional yaw_deg, pitch_deg, roll_deg about the box's centre
+/// (R = R_z(yaw)·R_y(pitch)·R_x(roll), as the vehicle's attitude).
+std::shared_ptr<const sim::Obstacles> readObstacles(io::MapReader& root) {
+  std::vector<sim::Box> boxes;
+  for (io::MapReader& o : root.maps("obstacles")) {
+    (void)o.choice("type", {"box"});
+    const std::string name = o.text("name");
+    const Eigen::Vector3d lo = vec3(fixedFinite(o, "min_m", 3));
+    const Eigen::Vector3d hi = vec3(fixedFinite(o, "max_m", 3));
+    const auto angle = [&o](const char* key) { return o.has(key) ? o.finiteNumber(key) * model::kDegToRad : 0.0; };
+    const double yaw = angle("yaw_deg");
+    const double pitch = angle("pitch_deg");
+    const double roll = angle("roll_deg");
+    if (lo.allFinite() && hi.allFinite() && !(hi.array() > lo.array()).all()) {
+      o.problem("max_m", "greater than min_m on every axis (a box of positive size)");
+    } else if (lo.allFinite() && hi.allFinite() && !(hi - lo).allFinite()) {
+      o.problem("max_m", "a box whose size is a finite number of metres");
+    }
+    o.rejectUnknownKeys();
+    if (o.problemCount() == 0) {
+      sim::Box b = sim::boxFromCorners(lo, hi, 0.0, name);
+      b.R_WO = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+      boxes.push_back(std::move(b));
+    }
+  }
+  if (root.problemCount() > 0 || boxes.empty()) return nullptr;
+  return std::make_shared<const sim::Obstacles>(std::move(boxes));
+}
+
+/// `beam_rangers:` a list of single-beam rangers: direction_B (unit, body), mount_B_m, and
+/// optionally rate_Hz, max_range_m, noise_floor_m, noise_fraction, outlier_probability.
+std::vector<sim::BeamRangerParams> readBeamRangers(io::MapReader& root) {
+  std::vector<sim::BeamRangerParams> out;
+  for (io::MapReader& b : root.maps("beam_rangers")) {
+    sim::BeamRangerParams p;
+    p.direction_B = vec3(fixedFinite(b, "direction_B", 3));
+    if (p.direction_B.allFinite() && p.direction_B.norm() > 0.0) p.direction_B.normalize();
+    p.mount_B = vec3(fixedFinite(b, "mount_B_m", 3));
+    if (b.has("rate_Hz")) p.rate_Hz = b.finiteNumber("rate_Hz");
+    if (b.has("max_range_m")) p.max_range_m = b.finiteNumber("max_range_m");
+    if (b.has("noise_floor_m")) p.noise_floor_m = b.finiteNumber("noise_floor_m");
+    if (b.has("noise_fraction")) p.noise_fraction = b.finiteNumber("noise_fraction");
+    if (b.has("outlier_probability")) p.outlier_probability = b.finiteNumber("outlier_probability");
+    b.rejectUnknownKeys();
+    out.push_back(p);
+  }
+  return out;
+}
+
 }  // namespace
 
 FlightScenario parseScenarioYaml(std::string_view yaml_text, const std::string& source,
@@ -230,8 +285,8 @@ FlightScenario parseScenarioYaml(std::string_view yaml_text, const std::string& 
     if (!control::parseConfiguration(name, s.controller)) {
       root.problem("controller", "got '" + name +
                                      "', expected 'recommended' or ACC:TORQUE, optionally followed "
-                                     "by +rotors and +learn or +learn0, or a map with acceleration "
-                                     "and torque");
+                                     "by +proximity (not after recommended, which has it), +rotors "
+                                     "and +learn or +learn0, or a map with acceleration and torque");
     }
   } else {
     auto ctrl = root.map("controller");
@@ -256,6 +311,8 @@ FlightScenario parseScenarioYaml(std::string_view yaml_text, const std::string& 
 
   auto terrain = root.map("terrain");
   s.terrain = readTerrain(terrain, base_dir);
+  if (root.has("obstacles")) s.obstacles = readObstacles(root);
+  if (root.has("beam_rangers")) s.beam_rangers = readBeamRangers(root);
 
   // The world: the scenario's `truth` (a built-in name or a truth file), unless the caller
   // overrides it (`fly --truth`); none named: the default world (experiments/world_setup.hpp).

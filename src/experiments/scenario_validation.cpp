@@ -2,8 +2,11 @@
 // Validation of a flight scenario before it is flown: every stage's parameters, the rates, and
 // the trajectory's feasibility for the nominal vehicle (flight.hpp, validate()).
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <numbers>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -12,6 +15,7 @@
 #include "geaware/experiments/flight.hpp"
 #include "geaware/flatness/flat_map.hpp"
 #include "geaware/model/field_check.hpp"
+#include "geaware/model/mixer.hpp"
 #include "geaware/model/vehicle_model.hpp"
 #include "geaware/traj/touchdown.hpp"
 
@@ -193,6 +197,50 @@ std::vector<ScenarioProblem> validate(const FlightScenario& s, ScenarioStage sta
     }
   }
   if (s.land_detector) append(out, s.land_detector->validate(), "land_detector.");
+  if (s.beam_rangers.size() > control::ControllerInput::kMaxBeams) {
+    out.push_back({"beam_rangers", std::to_string(s.beam_rangers.size()) + " rangers",
+                   "at most " + std::to_string(control::ControllerInput::kMaxBeams)});
+  }
+  for (std::size_t k = 0; k < s.beam_rangers.size(); ++k) {
+    append(out, s.beam_rangers[k].validate(), "beam_rangers[" + std::to_string(k) + "].");
+  }
+  if (!(s.max_beam_age_s > 0.0) || !std::isfinite(s.max_beam_age_s)) {
+    out.push_back({"max_beam_age_s", show(s.max_beam_age_s), "a finite age > 0 [s]"});
+  }
+  if (s.obstacles && s.obstacles->boxes().size() > kMaxObstacles) {
+    out.push_back({"obstacles", std::to_string(s.obstacles->boxes().size()) + " boxes",
+                   "at most " + std::to_string(kMaxObstacles)});
+  } else if (s.obstacles && s.trajectory && finiteNonNegative(s.trajectory->duration()) && vehicle_errors.empty()) {
+    // The reference must not lead the vehicle, level at the reference's yaw, into an obstacle:
+    // its centre, its rotor centres and 8 points on each rotor's rim, every 10 ms (at most 10⁵
+    // samples).
+    const double T = s.trajectory->duration();
+    const long n = static_cast<long>(std::min(1e5, std::ceil(T * 100.0) + 1.0));
+    const auto rotors = model::Mixer::rotorPositions_B(s.vehicle.diagonal_rotor_distance_m);
+    const double r_prop = s.vehicle.propeller_radius_m;
+    for (long k = 0; k < n; ++k) {
+      const double t = n > 1 ? T * static_cast<double>(k) / static_cast<double>(n - 1) : 0.0;
+      const traj::FlatOutput ref = s.trajectory->sample(t);
+      const Eigen::Matrix3d yaw = Eigen::AngleAxisd(ref.yaw_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      std::optional<std::size_t> box = s.obstacles->containing(ref.p_W);
+      for (std::size_t i = 0; i < rotors.size() && !box; ++i) {
+        const Eigen::Vector3d c = ref.p_W + yaw * rotors[i];
+        for (int j = 0; j <= 8 && !box; ++j) {
+          const double th = std::numbers::pi / 4.0 * j;
+          const Eigen::Vector3d rim = j == 8 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(std::cos(th), std::sin(th), 0.0);
+          box = s.obstacles->containing(c + r_prop * (yaw * rim));
+        }
+      }
+      if (box) {
+        const Eigen::Vector3d& p = ref.p_W;
+        out.push_back({"trajectory", "at t = " + show(t) + " s, (" + show(p.x()) + ", " + show(p.y()) + ", " +
+                                         show(p.z()) + ") m",
+                       "a path on which the level vehicle stays outside every obstacle (it enters '" +
+                           s.obstacles->boxes()[*box].name + "')"});
+        break;
+      }
+    }
+  }
   if (std::abs(s.eskf.imu_rate_hz - s.sensors.imu.rate_Hz) > 1e-9 * s.sensors.imu.rate_Hz) {
     out.push_back({"eskf.imu_rate_hz", show(s.eskf.imu_rate_hz),
                    "the IMU's rate, sensors.imu.rate_Hz = " + show(s.sensors.imu.rate_Hz)});

@@ -24,6 +24,11 @@ const FlightScenario& checked(const FlightScenario& s) {
         "the stepped simulator does not fly landings and take-offs yet (scenario.start_on_ground, "
         "scenario.land_detector): fly them with runFlight (`geaware fly`, `geaware sweep`)");
   }
+  if ((s.obstacles && !s.obstacles->empty()) || !s.beam_rangers.empty()) {
+    throw std::invalid_argument(
+        "the stepped simulator does not fly obstacles or beam rangers yet (scenario.obstacles, "
+        "scenario.beam_rangers): fly them with runFlight (`geaware fly`, `geaware sweep`)");
+  }
   if (auto problems = validate(s); !problems.empty()) throw InvalidScenario(std::move(problems));
   return s;
 }

@@ -215,6 +215,8 @@ FlightScenario sweepFlightScenario(const SweepSpec& spec, const SweepKey& k) {
   applyPerturbation(p, f);
   f.trajectory = scn.trajectory;
   if (scn.terrain) f.terrain = scn.terrain;
+  f.obstacles = scn.obstacles;
+  f.beam_rangers = scn.beam_rangers;
   f.controller = control::applyParameters(c.params, spec.controller_values);
   if (isNeural(c)) f.residual = w.neural;
   f.seed = k.seed;
@@ -239,6 +241,8 @@ std::vector<ScenarioProblem> sweepScenarioProblems(const SweepSpec& spec, std::s
   const SweepScenario& scn = spec.scenarios.at(scenario_index);
   f.trajectory = scn.trajectory;
   if (scn.terrain) f.terrain = scn.terrain;
+  f.obstacles = scn.obstacles;
+  f.beam_rangers = scn.beam_rangers;
   if (!spec.controllers.empty()) {
     f.controller = control::applyParameters(spec.controllers.front().params, spec.controller_values);
   }
@@ -285,6 +289,8 @@ std::string sweepRecord(const SweepSpec& spec, const SweepKey& k, const FlightRe
   j["terminated"] = ff.terminated;
   j["non_finite_commands"] = ff.non_finite_commands;
   j["simulated_s"] = r.simulated_s;
+  // Flights with obstacles only (the ceiling and wall scenarios): other records keep their bytes.
+  if (r.min_obstacle_clearance_m) j["min_obstacle_clearance_m"] = *r.min_obstacle_clearance_m;
   if (const auto& g = r.ground_contact) {
     // Landings and take-offs (flights with ground contact) only: other records keep their bytes.
     j.update(touchdownJson(*g));

@@ -190,10 +190,13 @@ SweepScenario readScenario(io::MapReader& m, const std::filesystem::path& base, 
     default_name = std::filesystem::path(file).stem().string();
     if (!file.empty()) {
       try {
-        // The scenario file gives the trajectory and the terrain; the rest is the sweep's.
+        // The scenario file gives the trajectory, the terrain, the obstacles and the beam
+        // rangers that see them; the rest is the sweep's.
         const FlightScenario f = loadScenarioFile(resolve(base, file), nullptr, max_sim_s);
         s.trajectory = f.trajectory;
         s.terrain = f.terrain;
+        s.obstacles = f.obstacles;
+        s.beam_rangers = f.beam_rangers;
       } catch (const std::exception& e) {
         m.problem("file", std::string("cannot use the scenario file: ") + e.what());
       }

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "geaware/model/field_check.hpp"
+#include "geaware/sim/obstacles.hpp"
 #include "geaware/sim/terrains.hpp"
 
 namespace geaware::sim {
@@ -135,11 +136,19 @@ const TruthParams& validated(const TruthParams& p, const PlantConfig& c, const P
 
 std::string describe(const Crash& crash) {
   char buf[200];
+  const char* part = crash.part == StrikePart::kRotorDisc     ? "rotor disc"
+                     : crash.part == StrikePart::kLandingFoot ? "landing foot"
+                                                              : "body";
+  if (crash.obstacle) {
+    std::snprintf(buf, sizeof buf, "t = %.4f s: %s %d struck an obstacle at (%.3f, %.3f, %.3f) m",
+                  crash.t_s, part, crash.index + 1, crash.point_W.x(), crash.point_W.y(),
+                  crash.point_W.z());
+    return buf;
+  }
   std::snprintf(buf, sizeof buf,
                 "t = %.4f s: %s %d struck the ground at (%.3f, %.3f, %.3f) m, %.1f mm deep",
-                crash.t_s, crash.part == StrikePart::kRotorDisc ? "rotor disc" : "landing foot",
-                crash.index + 1, crash.point_W.x(), crash.point_W.y(), crash.point_W.z(),
-                crash.depth_m * 1e3);
+                crash.t_s, part, crash.index + 1, crash.point_W.x(), crash.point_W.y(),
+                crash.point_W.z(), crash.depth_m * 1e3);
   return buf;
 }
 
@@ -346,12 +355,23 @@ StepResult Plant::step(const std::array<double, 4>& throttle, double dt_s) {
   state_.t_s = t0_s_ + dt_s;
   publish(k4);
 
-  // 5. Ground strikes.
+  // 5. Ground strikes, then obstacles.
   if (config_.ground_strikes && terrain_ != nullptr) {
     crash_ = detectStrike();
     result.crash = crash_;
   }
+  if (config_.ground_strikes && obstacles_ && !crash_) {
+    crash_ = obstacleStrike(*obstacles_, params_, state_.p_W, R_WB_, state_.t_s, config_.rim_samples);
+    result.crash = crash_;
+  }
   return result;
+}
+
+void Plant::setObstacles(std::shared_ptr<const Obstacles> obstacles) {
+  if (!obstacles || obstacles->empty()) return;
+  if (obstacles_) throw std::logic_error("Plant::setObstacles: obstacles are already set");
+  obstacles_ = std::move(obstacles);
+  if (config_.rotor_aerodynamics) addContribution(std::make_unique<ProximityContribution>(params_, obstacles_));
 }
 
 void Plant::evaluate(double s, RigidBodyDerivative& out) {

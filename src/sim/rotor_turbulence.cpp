@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "geaware/model/field_check.hpp"
+#include "geaware/model/vehicle_model.hpp"
 
 namespace geaware::sim {
 

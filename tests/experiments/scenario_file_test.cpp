@@ -3,6 +3,7 @@
 // bad file is rejected with the file, the line and the key.
 #include "geaware/experiments/scenario_file.hpp"
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -299,6 +300,75 @@ TEST(ScenarioFile, MalformedYamlGivesTheLine) {
     ASSERT_FALSE(e.problems().empty());
     EXPECT_GE(e.problems()[0].line, 2);
     EXPECT_NE(std::string(e.what()).find("bad.yaml"), std::string::npos);
+  }
+}
+
+}  // namespace
+
+namespace {
+
+const std::string& ceilingText() {
+  static const std::string t = slurp(sourceDir() / "config/scenarios/ceiling_pass.yaml");
+  return t;
+}
+
+TEST(ScenarioFile, ObstaclesAndBeamRangersLoad) {
+  const FlightScenario s = geaware::experiments::loadScenarioFile(sourceDir() / "config/scenarios/ceiling_pass.yaml");
+  ASSERT_TRUE(s.obstacles);
+  ASSERT_EQ(s.obstacles->boxes().size(), 1u);
+  const geaware::sim::Box& b = s.obstacles->boxes()[0];
+  EXPECT_EQ(b.name, "ceiling");
+  EXPECT_NEAR(b.centre_W.z() - b.half_extent_m.z(), 1.15, 1e-12);  // the underside
+  EXPECT_TRUE(s.beam_rangers.empty());  // the default set flies
+  EXPECT_TRUE(s.controller.proximity_compensation);
+  const FlightScenario w = geaware::experiments::loadScenarioFile(sourceDir() / "config/scenarios/wall_pass.yaml");
+  ASSERT_TRUE(w.obstacles);
+  EXPECT_NEAR(w.obstacles->clearance(Eigen::Vector3d(0.5, 0.0, 1.0)), 0.4127, 1e-12);
+
+  // A yawed box and one configured beam.
+  const std::string text = replaced(
+      ceilingText(), "  - {type: box, name: ceiling, min_m: [0.0, -1.0, 1.15], max_m: [1.5, 1.0, 1.35]}\n",
+      "  - {type: box, name: ceiling, min_m: [0.0, -1.0, 1.15], max_m: [1.5, 1.0, 1.35], yaw_deg: 30}\n"
+      "beam_rangers:\n  - {direction_B: [0, 0, 2], mount_B_m: [0, 0, 0.02], rate_Hz: 25}\n");
+  const FlightScenario y = parseScenarioYaml(text, "s.yaml", sourceDir() / "config/scenarios");
+  ASSERT_EQ(y.beam_rangers.size(), 1u);
+  EXPECT_TRUE(y.beam_rangers[0].direction_B.isApprox(Eigen::Vector3d::UnitZ()));  // normalised
+  EXPECT_DOUBLE_EQ(y.beam_rangers[0].rate_Hz, 25.0);
+  EXPECT_NEAR(y.obstacles->boxes()[0].R_WO(1, 0), 0.5, 1e-12);  // sin 30°
+  // A slab tilted 5° about y.
+  const std::string tilted = replaced(ceilingText(), "max_m: [1.5, 1.0, 1.35]}", "max_m: [1.5, 1.0, 1.35], pitch_deg: 5}");
+  const FlightScenario t = parseScenarioYaml(tilted, "s.yaml", sourceDir() / "config/scenarios");
+  EXPECT_NEAR(t.obstacles->boxes()[0].R_WO(0, 2), std::sin(5.0 * std::acos(-1.0) / 180.0), 1e-12);
+}
+
+TEST(ScenarioFile, BadObstaclesAreNamedWithTheirLine) {
+  {
+    const std::string text = replaced(ceilingText(), "max_m: [1.5, 1.0, 1.35]", "max_m: [1.5, 1.0, 1.15]");
+    const auto p = problemsOf(text);
+    ASSERT_EQ(p.size(), 1u);
+    EXPECT_EQ(p[0].key, "obstacles[0].max_m");
+    EXPECT_EQ(p[0].line, lineOf(text, "type: box"));
+    EXPECT_NE(p[0].message.find("greater than min_m"), std::string::npos) << p[0].message;
+  }
+  {
+    const std::string text = replaced(ceilingText(), "type: box", "type: sphere");
+    const auto p = problemsOf(text);
+    ASSERT_FALSE(p.empty());
+    EXPECT_EQ(p[0].key, "obstacles[0].type");
+  }
+  {
+    // The reference straight through a pillar: refused before flying, naming it.
+    const std::string text = replaced(ceilingText(), "name: ceiling, min_m: [0.0, -1.0, 1.15]", "name: pillar, min_m: [0.0, -1.0, 0.5]");
+    const auto p = problemsOf(text);
+    ASSERT_EQ(p.size(), 1u);
+    EXPECT_EQ(p[0].key, "trajectory");
+    EXPECT_NE(p[0].message.find("pillar"), std::string::npos) << p[0].message;
+  }
+  {
+    const std::string text = ceilingText() + "beam_rangers:\n  - {direction_B: [0, 0, 1], mount_B_m: [0, 0, 0], rate_Hz: -5}\n";
+    const auto p = problemsOf(text);
+    ASSERT_EQ(p.size(), 1u);
+    EXPECT_EQ(p[0].key, "beam_rangers[0].rate_Hz");
   }
 }
 

@@ -7,6 +7,7 @@
 #include "geaware/experiments/stepped_world.hpp"
 
 #include <array>
+#include <memory>
 #include <stdexcept>
 #include <vector>
 
@@ -127,6 +128,11 @@ TEST(SteppedWorld, RefusesFaultsOpenLoopAndInvalidScenarios) {
   FlightScenario bad = asBuiltWithEverything(1);
   bad.plant_rate_hz = -1.0;
   EXPECT_THROW(SteppedWorld{bad}, InvalidScenario);
+  // Obstacles (a ceiling far overhead) would fly without their effects, strikes or rangers.
+  FlightScenario roofed = asBuiltWithEverything(1);
+  roofed.obstacles = std::make_shared<const sim::Obstacles>(std::vector<sim::Box>{
+      sim::boxFromCorners(Eigen::Vector3d(-50, -50, 20), Eigen::Vector3d(50, 50, 21), 0.0, "roof")});
+  EXPECT_THROW(SteppedWorld{roofed}, std::invalid_argument);
 }
 
 }  // namespace

@@ -131,14 +131,14 @@ TEST(ControllerParamsFile, ValuesReachTheConfigurationAndOnlyTheAdditionsItSwitc
   const auto r = control::applyParameters(control::recommendedControllerParams(), v);
   EXPECT_EQ(r.guard_margin_m, 0.05);
   EXPECT_EQ(r.dob_time_constant_s, 0.2);
-  EXPECT_EQ(control::configurationName(r), "model:model_indi+dob+integral+guard+speedloop");
+  EXPECT_EQ(control::configurationName(r), "model:model_indi+dob+integral+guard+speedloop+proximity");
   EXPECT_EQ(r.rotor_speed_ki_per_s, 15.0);
   EXPECT_EQ(p.rotor_speed_ki_per_s, 0.0);  // an addition: the paper's configuration stays open loop
   // k_i_per_s = 0 switches the speed loop off in `recommended`.
   control::ControllerParams off = control::defaultParameterValues();
   off.rotor_speed_ki_per_s = 0.0;
   EXPECT_EQ(control::configurationName(control::applyParameters(control::recommendedControllerParams(), off)),
-            "model:model_indi+dob+integral+guard");
+            "model:model_indi+dob+integral+guard+proximity");
 }
 
 /// A second of hover from 2 cm below the reference, with and without the default file's

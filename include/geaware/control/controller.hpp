@@ -45,6 +45,7 @@
 #include "geaware/control/residual_force.hpp"
 #include "geaware/flatness/flat_map.hpp"
 #include "geaware/model/low_pass.hpp"
+#include "geaware/model/sensor_data.hpp"
 #include "geaware/model/state_estimate.hpp"
 #include "geaware/model/vehicle_model.hpp"
 #include "geaware/traj/flat_output.hpp"
@@ -81,6 +82,11 @@ struct ControllerInput {
   std::array<double, 4> rotor_height_offset_m{};
   Eigen::Vector3d ground_normal_W = Eigen::Vector3d::UnitZ();
   bool ground_shape_valid = false;  ///< false: no reading this tick
+  /// The single-beam rangers that look up and sideways (sim::BeamRanger), their latest
+  /// readings; read only with ControllerParams::proximity_compensation. An invalid entry (no
+  /// return, too old, or no such ranger) contributes nothing.
+  static constexpr std::size_t kMaxBeams = 6;
+  std::array<model::BeamReading, kMaxBeams> beams{};
 };
 
 /// Conditions met during an update (bit flags).
@@ -195,18 +201,20 @@ class Controller {
     Eigen::Vector3d a_dob = Eigen::Vector3d::Zero();  ///< low-passed DOB residual [m/s²]
     double a_z_min = -std::numeric_limits<double>::infinity();  ///< guard's bound [m/s²]
     Eigen::Vector3d a_shape = Eigen::Vector3d::Zero();  ///< partial ground effect [m/s²]
+    Eigen::Vector3d a_prox = Eigen::Vector3d::Zero();   ///< ceiling and wall effects [m/s²]
   };
   /// The guarded reference, the position integral (with anti-windup) and the disturbance
   /// residual of this tick; advances their states.
   [[nodiscard]] Additions additions(const ControllerInput& in, double thrust_ref_N,
                                     const Eigen::Matrix3d& R, const Eigen::Vector3d& a_shape_W,
-                                    std::uint32_t& flags) noexcept;
+                                    const Eigen::Vector3d& a_prox_W, std::uint32_t& flags) noexcept;
   /// The low-passed residual of the disturbance observer against the model's terms (F_G at the
   /// measured height with the reference thrust `thrust_ref_N`, drag at the estimated velocity).
   /// The partial ground effect `a_shape_W` is part of the model (per-rotor ground effect on).
   [[nodiscard]] Eigen::Vector3d disturbanceResidual(const ControllerInput& in, double thrust_ref_N,
                                                     const Eigen::Matrix3d& R,
-                                                    const Eigen::Vector3d& a_shape_W) noexcept;
+                                                    const Eigen::Vector3d& a_shape_W,
+                                                    const Eigen::Vector3d& a_prox_W) noexcept;
   /// K^I·∫e_p after this tick's integration, held against the saturations of the last tick.
   [[nodiscard]] Eigen::Vector3d integralTerm(const Eigen::Vector3d& e_p,
                                              std::uint32_t& flags) noexcept;
@@ -227,6 +235,12 @@ class Controller {
   [[nodiscard]] GroundShapeTerms groundShapeTerms(const ControllerInput& in, double h,
                                                   double thrust_N,
                                                   const Eigen::Matrix3d& R) noexcept;
+  /// The ceiling and wall effects predicted from the beam rangers (zero when
+  /// proximity_compensation is off or no beam sees a surface): the specific force, world frame
+  /// [m/s²], and the torque, body frame [N·m], at thrust `thrust_N` (controller_proximity.cpp).
+  /// Updates the beams' consistency check.
+  [[nodiscard]] GroundShapeTerms proximityTerms(const ControllerInput& in, double thrust_N,
+                                                const Eigen::Matrix3d& R) noexcept;
   /// The yaw torque to allocate: `tau_z` lagged against the rotors' J_R·ṅ lead.
   [[nodiscard]] double allocatedYawTorque(const ControllerInput& in, double tau_z) noexcept;
   /// The shared throttle PI correction T_E on the thrust-acceleration error.
@@ -253,6 +267,8 @@ class Controller {
   double arm_m_;
   /// Rotor centres in the body frame, mixer order (model::Mixer::rotorPositions_B) [m].
   std::array<Eigen::Vector3d, 4> rotors_B_;
+  /// Propeller radius, for the ceiling and wall laws [m].
+  double propeller_radius_m_;
   /// F_G learned in flight (with learning on; ground_effect_ and reference_map_ then hold F_G
   /// as a table on the learner's knots).
   std::optional<GroundEffectLearner> learner_;
@@ -264,7 +280,7 @@ class Controller {
     Memory(double cutoff_hz, double rate_hz, double height_m) noexcept
         : w_filter_(cutoff_hz, rate_hz), tau_hat_filter_(cutoff_hz, rate_hz),
           accel_filter_(cutoff_hz, rate_hz), thrust_vector_filter_(cutoff_hz, rate_hz),
-          ground_torque_filter_(cutoff_hz, rate_hz),
+          ground_torque_filter_(cutoff_hz, rate_hz), proximity_torque_filter_(cutoff_hz, rate_hz),
           last_height_m_(height_m) {}
     // Filters in step (one type, one cut-off): ω (differentiated for ω̇_f) with τ̂_B, and the
     // measured acceleration with the rotor-speed thrust vector for translational INDI.
@@ -276,6 +292,10 @@ class Controller {
     // feeds forward only what the filtered measurement does not hold yet), and the last valid
     // ground shape.
     model::LowPass2<3> ground_torque_filter_;
+    model::LowPass2<3> proximity_torque_filter_;  // the same for the ceiling and wall torque
+    // Whether a beam saw a surface this tick (the F_G learner then takes no sample: the
+    // observer's estimate holds the ceiling's pull too).
+    bool proximity_active_ = false;
     Eigen::Vector4d rotor_height_offset_m_ = Eigen::Vector4d::Zero();
     Eigen::Vector3d ground_normal_W_ = Eigen::Vector3d::UnitZ();
     double thrust_acc_f_mps2_ = 0.0;  // |filtered thrust vector|, T_f/m [m/s²]
@@ -313,6 +333,19 @@ class Controller {
     bool terminated_ = false;
   };
   Memory mem_;
+  /// The beams' last new reading (time, range) and whether it agreed with the one before it (a
+  /// lone outlier is not fed forward). Outside Memory: derived from the inputs' validity checks
+  /// alone, it needs no undoing, and update() copies Memory on every tick.
+  struct BeamMemory {
+    BeamMemory() noexcept {
+      last_t_s.fill(std::numeric_limits<double>::quiet_NaN());
+      last_range_m.fill(std::numeric_limits<double>::quiet_NaN());
+    }
+    std::array<double, ControllerInput::kMaxBeams> last_t_s{};
+    std::array<double, ControllerInput::kMaxBeams> last_range_m{};
+    std::array<bool, ControllerInput::kMaxBeams> consistent{};
+  };
+  BeamMemory beam_mem_;
 };
 
 }  // namespace geaware::control

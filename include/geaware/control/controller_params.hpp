@@ -123,6 +123,13 @@ struct ControllerParams {
   /// ground normal instead of the vertical. Acceleration `model` (the force) and torque `model` /
   /// `model_indi` (the torque). Off unless the configuration name says "+rotors".
   bool per_rotor_ground_effect = false;
+  /// Ceiling and wall effects from the single-beam rangers (issue 13 item 4, docs/controller.md
+  /// "Ceilings and walls"): the image-method law (model/proximity_effect.hpp) at each rotor's
+  /// distance to the surface each beam sees, taken square to the beam; the extra thrust and the
+  /// pull toward a wall are fed forward (acceleration `model`, `none`, `neural`) and their torque
+  /// (every torque). Nothing without a beam that sees a surface. On in `recommended`; elsewhere
+  /// the configuration name says "+proximity".
+  bool proximity_compensation = false;
 
   /// Whether any of geaware's additions is on.
   [[nodiscard]] bool hasAdditions() const noexcept;
@@ -140,11 +147,13 @@ struct ControllerParams {
 
 /// The name of a configuration: "recommended" when `p` has recommendedControllerParams()'s
 /// switches and additions; otherwise "ACC:TORQUE", followed by "+dob", "+integral", "+guard"
-/// for each addition that is on; then "+learn" or "+learn0" when F_G is learned in flight.
+/// for each addition that is on and "+proximity" for the ceiling and wall feed-forward (except
+/// in "recommended", which has it); then "+rotors" for per-rotor ground effect and "+learn" or
+/// "+learn0" when F_G is learned in flight.
 [[nodiscard]] std::string configurationName(const ControllerParams& p);
 
-/// Parses "recommended" or "ACC:TORQUE" into `p` (the switches and additions only; gains and
-/// rates keep their values); false when malformed.
+/// Parses "recommended" or "ACC:TORQUE[+proximity]", then "[+rotors][+learn|+learn0]", into `p`
+/// (the switches and additions only; gains and rates keep their values); false when malformed.
 [[nodiscard]] bool parseConfiguration(const std::string& text, ControllerParams& p);
 
 }  // namespace geaware::control

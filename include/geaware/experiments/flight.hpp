@@ -44,6 +44,7 @@
 #include "geaware/sim/plant.hpp"
 #include "geaware/sim/plant_state.hpp"
 #include "geaware/sim/sensors.hpp"
+#include "geaware/sim/obstacles.hpp"
 #include "geaware/sim/terrain.hpp"
 #include "geaware/sim/truth_params.hpp"
 #include "geaware/traj/flat_output.hpp"
@@ -95,6 +96,15 @@ struct FlightScenario {
   std::optional<sim::MismatchSpec> mismatch;
   /// Surface under the vehicle; null: flat ground at z = 0.
   std::shared_ptr<const sim::Terrain> terrain;
+  /// Boxes around it (ceilings, walls; sim/obstacles.hpp, docs/world.md §10; at most
+  /// kMaxObstacles); null: none.
+  std::shared_ptr<const sim::Obstacles> obstacles;
+  /// The single-beam rangers that look up and sideways (at most
+  /// control::ControllerInput::kMaxBeams); empty: sim::defaultBeamRangers() when there are
+  /// obstacles, none otherwise.
+  std::vector<sim::BeamRangerParams> beam_rangers;
+  /// A beam reading older than this is not handed to the controller [s].
+  double max_beam_age_s = 0.1;
   /// The reference; the vehicle starts hovering at its first point. Required.
   std::shared_ptr<const traj::Trajectory> trajectory;
   /// Gains, compensation switches and the control rate (controller.rate_hz).
@@ -136,6 +146,9 @@ struct FlightScenario {
   /// vehicle on its gear it takes the throttles to zero. Empty: none (the controller flies on).
   std::optional<control::LandDetectorParams> land_detector;
 };
+
+/// The most boxes a scenario may hold (each is evaluated at every RK4 stage for every rotor).
+inline constexpr std::size_t kMaxObstacles = 1000;
 
 /// Makes a landing or take-off flyable, from its trajectory (traj::Landing, traj::TakeOff):
 /// ground contact on in the plant, the flight starts standing on the gear (take-off) or ends
@@ -260,6 +273,9 @@ struct FlightResult {
   std::optional<LearnedGroundEffect> learned_ground_effect;
   /// Touchdown, bounce and lift-off; empty unless the flight allows ground contact.
   std::optional<GroundContactSummary> ground_contact;
+  /// With obstacles: the smallest distance from a rotor disc (its centre and eight points on its
+  /// rim) to any box over the trajectory's control ticks (truth); empty without obstacles [m].
+  std::optional<double> min_obstacle_clearance_m;
   double simulated_s = 0.0;       ///< plant time at the end [s]
   double wall_s = 0.0;            ///< wall time of the loop (not deterministic) [s]
   double real_time_factor = 0.0;  ///< simulated_s / wall_s [-]

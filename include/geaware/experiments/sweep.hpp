@@ -44,6 +44,8 @@ struct SweepScenario {
   std::string name;  ///< the key's `scn=` part, e.g. "lem-0.12m-1mps"
   std::shared_ptr<const traj::Trajectory> trajectory;
   std::shared_ptr<const sim::Terrain> terrain;  ///< null: flat ground at z = 0
+  std::shared_ptr<const sim::Obstacles> obstacles;  ///< ceilings and walls; null: none
+  std::vector<sim::BeamRangerParams> beam_rangers;  ///< empty: the default set with obstacles
 };
 
 /// A parsed sweep file.

@@ -57,4 +57,14 @@ struct RangerFrame {
   }
 };
 
+/// One reading of a single-zone ranger looking along a fixed body direction (up at a ceiling,
+/// sideways at a wall; sim::BeamRanger). Without a return (out of range, grazing) not valid.
+struct BeamReading {
+  double t_s = 0.0;                                        ///< sample time [s]
+  Eigen::Vector3d direction_B = Eigen::Vector3d::UnitZ();  ///< unit beam direction, body [-]
+  Eigen::Vector3d mount_B = Eigen::Vector3d::Zero();       ///< beam origin rel. the geometric centre, body [m]
+  double range_m = 0.0;                                    ///< along the beam [m]
+  bool valid = false;                                      ///< has a return
+};
+
 }  // namespace geaware::model

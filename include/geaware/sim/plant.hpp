@@ -87,6 +87,8 @@ class Contribution {
   [[nodiscard]] virtual Wrench wrench(const ContributionContext& ctx) noexcept = 0;
 };
 
+class Obstacles;
+
 namespace detail {
 class GravityContribution;
 class RotorAeroContribution;
@@ -115,19 +117,21 @@ struct PlantConfig {
   bool ground_effect_per_stage = false;
 };
 
-enum class StrikePart { kRotorDisc, kLandingFoot };
+enum class StrikePart { kRotorDisc, kLandingFoot, kBody };
 
-/// The end of a flight: something went under the terrain surface.
+/// The end of a flight: something went under the terrain surface or into an obstacle.
 struct Crash {
   double t_s = 0.0;                                   ///< time of the step that found it [s]
   Eigen::Vector3d point_W = Eigen::Vector3d::Zero();  ///< the deepest point under the surface [m]
   StrikePart part = StrikePart::kRotorDisc;           ///< what struck
   int index = 0;         ///< rotor (mixer order) or foot index, 0-based
-  double depth_m = 0.0;  ///< how far under the surface [m]
+  double depth_m = 0.0;  ///< how far under the surface [m] (0 for an obstacle)
+  bool obstacle = false;  ///< into one of the obstacles (obstacles.hpp), not the terrain
 };
 
 /// One line for logs and the CLI, e.g. "t = 0.4350 s: landing foot 1 struck the ground at
-/// (0.562, 0.562, -0.003) m, 3.1 mm deep" (rotors and feet numbered from 1 there).
+/// (0.562, 0.562, -0.003) m, 3.1 mm deep" (rotors and feet numbered from 1 there), or
+/// "… rotor disc 2 struck an obstacle at (…) m".
 [[nodiscard]] std::string describe(const Crash& crash);
 
 /// Outcome of one step.
@@ -159,6 +163,12 @@ class Plant {
 
   /// Add a disturbance (or any other contribution); it is summed from the next step on.
   void addContribution(std::unique_ptr<Contribution> contribution);
+
+  /// Boxes around the vehicle from the next step on (sim/obstacles.hpp): their ceiling and wall
+  /// effects are added as a contribution and, with ground_strikes on, a rotor rim, foot or the
+  /// body inside one is a strike. Call at most once; null does nothing.
+  void setObstacles(std::shared_ptr<const Obstacles> obstacles);
+  [[nodiscard]] const Obstacles* obstacles() const noexcept { return obstacles_.get(); }
 
   /// Air velocity at the vehicle from now on (the aerodynamics see v_CoM − wind) [m/s].
   void setWind_W(const Eigen::Vector3d& wind_W) noexcept { wind_W_ = wind_W; }
@@ -210,6 +220,7 @@ class Plant {
 
   TruthParams params_;
   std::shared_ptr<const Terrain> terrain_;
+  std::shared_ptr<const Obstacles> obstacles_;
   PlantConfig config_;
   MassProperties mass_;
   std::array<Eigen::Vector3d, 4> rotor_from_com_B_{};

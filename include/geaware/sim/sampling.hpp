@@ -33,6 +33,8 @@ inline constexpr std::uint64_t kImuVibration = 0x766962'00000007ULL;
 inline constexpr std::uint64_t kMocapJitter = 0x6a6974'00000008ULL;
 inline constexpr std::uint64_t kUnsteadiness = 0x756e73'00000009ULL;
 inline constexpr std::uint64_t kFaultOutliers = 0x666c74'0000000bULL;  // experiments/faults.hpp
+/// Single-beam rangers (obstacles.hpp): beam k draws from kBeamRanger + k.
+inline constexpr std::uint64_t kBeamRanger = 0x62656d'00000100ULL;
 }  // namespace salt
 
 /// MT19937-64 (Matsumoto & Nishimura; Nishimura 2000), bit for bit the engine std::mt19937_64
