@@ -229,10 +229,7 @@ class FlightLoop {
       for (const Eigen::Vector3d& r : truth_.rotor_position_B) {
         const Eigen::Vector3d centre = x.p_W + R * r;
         c = std::min(c, s_.obstacles->clearance(centre));
-        for (int k = 0; k < 8; ++k) {
-          const double th = std::numbers::pi / 4.0 * k;
-          c = std::min(c, s_.obstacles->clearance(centre + std::cos(th) * ex + std::sin(th) * ey));
-        }
+        for (const Eigen::Vector2d& u : rim_unit_) c = std::min(c, s_.obstacles->clearance(centre + u.x() * ex + u.y() * ey));
       }
     }
     control::ControllerInput& in = tick_.input;
@@ -399,6 +396,7 @@ class FlightLoop {
   std::optional<sim::Wind> wind_;
   sim::SensorSuite sensors_;
   std::vector<sim::BeamRanger> beams_;  // up and sideways (scenario.beam_rangers)
+  const std::vector<Eigen::Vector2d> rim_unit_ = sim::rimUnitCircle(8);  // disc clearance samples
   std::array<model::BeamReading, control::ControllerInput::kMaxBeams> beam_{};  // their latest
   // The controller side: built from the nominal vehicle and sensor data only.
   std::unique_ptr<estimation::Eskf> eskf_;

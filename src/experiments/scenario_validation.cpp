@@ -5,7 +5,6 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <optional>
 #include <string>
 #include <utility>
@@ -218,6 +217,8 @@ std::vector<ScenarioProblem> validate(const FlightScenario& s, ScenarioStage sta
     const long n = static_cast<long>(std::min(1e5, std::ceil(T * 100.0) + 1.0));
     const auto rotors = model::Mixer::rotorPositions_B(s.vehicle.diagonal_rotor_distance_m);
     const double r_prop = s.vehicle.propeller_radius_m;
+    std::vector<Eigen::Vector2d> disc = sim::rimUnitCircle(8);
+    disc.emplace_back(0.0, 0.0);  // and the centre
     for (long k = 0; k < n; ++k) {
       const double t = n > 1 ? T * static_cast<double>(k) / static_cast<double>(n - 1) : 0.0;
       const traj::FlatOutput ref = s.trajectory->sample(t);
@@ -225,10 +226,8 @@ std::vector<ScenarioProblem> validate(const FlightScenario& s, ScenarioStage sta
       std::optional<std::size_t> box = s.obstacles->containing(ref.p_W);
       for (std::size_t i = 0; i < rotors.size() && !box; ++i) {
         const Eigen::Vector3d c = ref.p_W + yaw * rotors[i];
-        for (int j = 0; j <= 8 && !box; ++j) {
-          const double th = std::numbers::pi / 4.0 * j;
-          const Eigen::Vector3d rim = j == 8 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(std::cos(th), std::sin(th), 0.0);
-          box = s.obstacles->containing(c + r_prop * (yaw * rim));
+        for (std::size_t j = 0; j < disc.size() && !box; ++j) {
+          box = s.obstacles->containing(c + r_prop * (yaw * Eigen::Vector3d(disc[j].x(), disc[j].y(), 0.0)));
         }
       }
       if (box) {

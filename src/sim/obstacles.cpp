@@ -148,7 +148,7 @@ Wrench ProximityContribution::wrench(const ContributionContext& ctx) noexcept {
 
 std::optional<Crash> obstacleStrike(const Obstacles& obstacles, const TruthParams& truth,
                                     const Eigen::Vector3d& p_W, const Eigen::Matrix3d& R_WB, double t_s,
-                                    int rim_samples) noexcept {
+                                    const std::vector<Eigen::Vector2d>& rim_unit) noexcept {
   const auto hit = [&](const Eigen::Vector3d& pt, StrikePart part, int index) -> std::optional<Crash> {
     if (!obstacles.containing(pt)) return std::nullopt;
     Crash c{t_s, pt, part, index, 0.0};
@@ -159,10 +159,8 @@ std::optional<Crash> obstacleStrike(const Obstacles& obstacles, const TruthParam
   const Eigen::Vector3d ey = truth.propeller_radius_m * R_WB.col(1);
   for (std::size_t i = 0; i < 4; ++i) {
     const Eigen::Vector3d centre = p_W + R_WB * truth.rotor_position_B[i];
-    for (int k = 0; k < rim_samples; ++k) {
-      const double th = 2.0 * std::numbers::pi * k / rim_samples;
-      if (auto c = hit(centre + std::cos(th) * ex + std::sin(th) * ey, StrikePart::kRotorDisc, static_cast<int>(i)))
-        return c;
+    for (const Eigen::Vector2d& u : rim_unit) {
+      if (auto c = hit(centre + u.x() * ex + u.y() * ey, StrikePart::kRotorDisc, static_cast<int>(i))) return c;
     }
   }
   for (std::size_t k = 0; k < truth.landing_feet_B.size(); ++k) {

@@ -152,6 +152,15 @@ std::string describe(const Crash& crash) {
   return buf;
 }
 
+std::vector<Eigen::Vector2d> rimUnitCircle(int samples) {
+  std::vector<Eigen::Vector2d> out;
+  for (int k = 0; k < samples; ++k) {
+    const double a = 2.0 * std::numbers::pi * k / samples;
+    out.emplace_back(std::cos(a), std::sin(a));
+  }
+  return out;
+}
+
 RotorSurroundings rotorSurroundings(
     const Terrain* terrain, const Eigen::Vector3d& p_com_W, const Eigen::Matrix3d& R_WB,
     const std::array<Eigen::Vector3d, 4>& rotor_from_com_B) noexcept {
@@ -180,10 +189,7 @@ Plant::Plant(const TruthParams& params, std::shared_ptr<const Terrain> terrain,
     dead_time_.emplace(params_.motor.dead_time_s, config_.step_s);
   for (std::size_t i = 0; i < 4; ++i)
     rotor_from_com_B_[i] = params_.rotor_position_B[i] - params_.cog_offset_B;
-  for (int k = 0; k < config_.rim_samples; ++k) {
-    const double a = 2.0 * std::numbers::pi * k / config_.rim_samples;
-    rim_unit_.emplace_back(std::cos(a), std::sin(a));
-  }
+  rim_unit_ = rimUnitCircle(config_.rim_samples);
   if (config_.gravity) {
     auto gravity =
         std::make_unique<detail::GravityContribution>(params_.mass_kg, params_.gravity_mps2);
@@ -361,7 +367,7 @@ StepResult Plant::step(const std::array<double, 4>& throttle, double dt_s) {
     result.crash = crash_;
   }
   if (config_.ground_strikes && obstacles_ && !crash_) {
-    crash_ = obstacleStrike(*obstacles_, params_, state_.p_W, R_WB_, state_.t_s, config_.rim_samples);
+    crash_ = obstacleStrike(*obstacles_, params_, state_.p_W, R_WB_, state_.t_s, rim_unit_);
     result.crash = crash_;
   }
   return result;

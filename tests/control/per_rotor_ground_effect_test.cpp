@@ -20,18 +20,15 @@
 #include "geaware/sim/truth_params.hpp"
 #include "geaware_test/eigen_matchers.hpp"
 #include "geaware_test/paper_vehicle.hpp"
+#include "configurations.hpp"
 
 namespace {
 
 using namespace geaware::control;
 using geaware::model::kGravity;
+using geaware_test::hoverThrust;
+using geaware_test::named;
 using geaware_test::paperVehicle;
-
-ControllerParams named(const std::string& name) {
-  ControllerParams p;
-  EXPECT_TRUE(parseConfiguration(name, p)) << name;
-  return p;
-}
 
 /// Hover at height h over one plane, slightly tilted, with a small position error and body
 /// rate, so that every term of the controller is non-trivial.
@@ -64,11 +61,6 @@ ControllerInput levelHover(double h) {
   in.rotor_speeds_rpm.setConstant(paperVehicle().hoverSpeedRpm(h));
   in.ground_shape_valid = true;
   return in;
-}
-
-/// The model's reference thrust in a level hover at h: m·g/(1 + F_G(h)) [N].
-double hoverThrust(double h) {
-  return paperVehicle().params().mass_kg * kGravity / (1.0 + paperVehicle().groundEffect().thrustRatio(h));
 }
 
 /// Rotor offsets with the rotors at body x > 0 beyond an edge, δ farther from their surface.

@@ -17,18 +17,15 @@
 #include "geaware/sim/obstacles.hpp"
 #include "geaware/sim/truth_params.hpp"
 #include "geaware_test/paper_vehicle.hpp"
+#include "configurations.hpp"
 
 namespace {
 
 using namespace geaware::control;
 using geaware::model::kGravity;
+using geaware_test::hoverThrust;
+using geaware_test::named;
 using geaware_test::paperVehicle;
-
-ControllerParams named(const std::string& name) {
-  ControllerParams p;
-  EXPECT_TRUE(parseConfiguration(name, p)) << name;
-  return p;
-}
 
 ControllerInput hover(double h, int k = 0) {
   ControllerInput in;
@@ -50,10 +47,6 @@ geaware::model::BeamReading beam(const Eigen::Vector3d& dir_B, double range_m) {
   b.range_m = range_m;
   b.valid = true;
   return b;
-}
-
-double hoverThrust(double h) {
-  return paperVehicle().params().mass_kg * kGravity / (1.0 + paperVehicle().groundEffect().thrustRatio(h));
 }
 
 TEST(ProximityCompensation, WithoutASurfaceInABeamNothingChangesBitForBit) {

@@ -140,12 +140,12 @@ TEST(Obstacles, ARotorRimInsideABoxIsAStrike) {
   EXPECT_THROW(plant.setObstacles(slab(2.0)), std::logic_error);
   PlantState x;
   x.p_W = Eigen::Vector3d(0, 0, 1.16);  // the rotor plane inside the slab
-  const auto crash = obstacleStrike(*plant.obstacles(), truth, x.p_W, Eigen::Matrix3d::Identity(), 0.5, 8);
+  const auto crash = obstacleStrike(*plant.obstacles(), truth, x.p_W, Eigen::Matrix3d::Identity(), 0.5, rimUnitCircle(8));
   ASSERT_TRUE(crash);
   EXPECT_TRUE(crash->obstacle);
   EXPECT_EQ(crash->part, StrikePart::kRotorDisc);
   EXPECT_NE(describe(*crash).find("struck an obstacle"), std::string::npos);
-  EXPECT_FALSE(obstacleStrike(*plant.obstacles(), truth, Eigen::Vector3d(0, 0, 1.0), Eigen::Matrix3d::Identity(), 0.5, 8));
+  EXPECT_FALSE(obstacleStrike(*plant.obstacles(), truth, Eigen::Vector3d(0, 0, 1.0), Eigen::Matrix3d::Identity(), 0.5, rimUnitCircle(8)));
 }
 
 TEST(Obstacles, APlantUnderACeilingIsPulledIntoIt) {

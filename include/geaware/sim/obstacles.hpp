@@ -24,6 +24,7 @@
 
 #include "geaware/model/field_error.hpp"
 #include "geaware/model/sensor_data.hpp"
+#include "geaware/model/units.hpp"
 #include "geaware/sim/plant.hpp"
 #include "geaware/sim/sampling.hpp"
 #include "geaware/sim/terrain.hpp"
@@ -98,11 +99,12 @@ class ProximityContribution final : public Contribution {
   RotorGeometry geometry_;
 };
 
-/// The first strike of a rotor-rim point (`rim_samples` per disc), a landing foot or the body
-/// centre inside a box, or nothing. `p_W` is the geometric centre.
+/// The first strike of a rotor-rim point (one per `rim_unit` vector, rimUnitCircle()), a landing
+/// foot or the body centre inside a box, or nothing. `p_W` is the geometric centre.
 [[nodiscard]] std::optional<Crash> obstacleStrike(const Obstacles& obstacles, const TruthParams& truth,
                                                   const Eigen::Vector3d& p_W, const Eigen::Matrix3d& R_WB,
-                                                  double t_s, int rim_samples) noexcept;
+                                                  double t_s,
+                                                  const std::vector<Eigen::Vector2d>& rim_unit) noexcept;
 
 /// One single-zone time-of-flight ranger looking along a fixed body direction (up at a ceiling,
 /// sideways at a wall). Defaults: the same VL53 family as the lattice ranger (ranger.hpp), one
@@ -114,7 +116,7 @@ struct BeamRangerParams {
   double rate_Hz = 50.0;                                   ///< [Hz]
   double min_range_m = 0.01;                               ///< [m]
   double max_range_m = 4.0;                                ///< [m]
-  double max_incidence_rad = 80.0 * 3.14159265358979323846 / 180.0;  ///< [rad]
+  double max_incidence_rad = 80.0 * model::kDegToRad;  ///< [rad]
   double noise_floor_m = 0.003;                            ///< 1σ [m]
   double noise_fraction = 0.01;                            ///< 1σ per metre [-]
   double outlier_probability = 1.0e-3;                     ///< per reading [-]

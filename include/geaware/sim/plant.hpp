@@ -140,6 +140,10 @@ struct StepResult {
   std::optional<Crash> crash;   ///< set once the vehicle has struck the terrain
 };
 
+/// `samples` unit vectors (cos θ_k, sin θ_k), θ_k = 2πk/samples, around a rotor disc's rim
+/// (in the disc's own x–y axes): where strikes and clearances sample the disc.
+[[nodiscard]] std::vector<Eigen::Vector2d> rimUnitCircle(int samples);
+
 /// Each rotor's vertical distance to the terrain under it and the surface normal there, from
 /// the CoM position and the rotor positions relative to the CoM. A null terrain gives ∞ and z_W.
 [[nodiscard]] RotorSurroundings rotorSurroundings(
