@@ -18,11 +18,13 @@
 #include <string>
 #include <vector>
 
+#include "geaware/experiments/beyond_suite.hpp"
 #include "geaware/experiments/campaign.hpp"
 #include "geaware/experiments/campaign_report.hpp"
 #include "geaware/experiments/campaign_summary.hpp"
 #include "geaware/experiments/fault_suite.hpp"
 #include "geaware/experiments/robustness.hpp"
+#include "geaware/experiments/sweep.hpp"
 #include "geaware/experiments/world_setup.hpp"
 #include "geaware/io/controller_params_file.hpp"
 #include "geaware/io/output_file.hpp"
@@ -34,9 +36,10 @@ namespace geaware::cli {
 namespace {
 
 struct BenchOptions {
-  std::string suite = "table";  ///< "table" (the paper's campaign) or "robustness"
-  std::vector<std::string> cases;        ///< robustness: the cases to fly (empty: all)
-  std::vector<std::string> controllers;  ///< robustness: the configurations (empty: all)
+  std::string suite = "table";  ///< "table" (the paper's campaign), "robustness", "faults", "beyond"
+  std::vector<std::string> cases;        ///< robustness, faults: the cases; beyond: the scenarios (empty: all)
+  std::vector<std::string> controllers;  ///< robustness, faults, beyond: the configurations (empty: all)
+  std::string sweep;  ///< beyond: the suite's sweep file (empty: the shipped one)
   std::string vehicle;
   std::string truth;
   std::string controller_params;  ///< --controller-params FILE (empty: the compiled defaults)
@@ -199,6 +202,81 @@ int runFaultSuite(const BenchOptions& o) {
   return 0;
 }
 
+/// The suite's sweep file as shipped (docs/install.md): beside the running program
+/// (<prefix>/bin/../share/geaware/config/sweeps), then this source tree's config/ (a program of
+/// the build tree), then the configured install prefix's.
+std::filesystem::path shippedSweepFile(const std::string& suite) {
+  namespace fs = std::filesystem;
+  const fs::path rel = fs::path("sweeps") / (suite + ".yaml");
+  std::vector<fs::path> places;
+  std::error_code ec;
+  if (const fs::path exe = fs::read_symlink("/proc/self/exe", ec); !ec && !exe.empty()) {
+    places.push_back((exe.parent_path() / GEAWARE_CONFIG_RELATIVE_DIR / rel).lexically_normal());
+  }
+  places.push_back(fs::path(GEAWARE_CONFIG_SOURCE_DIR) / rel);
+  places.push_back(fs::path(GEAWARE_CONFIG_INSTALL_DIR) / rel);
+  std::string tried;
+  for (const auto& p : places) {
+    if (fs::is_regular_file(p, ec)) return p;
+    tried += (tried.empty() ? "" : ", ") + p.string();
+  }
+  throw UsageError("--suite " + suite + ": the suite's sweep file is not installed (looked for " + tried +
+                   "); give it with --sweep FILE");
+}
+
+/// `--suite beyond` (experiments/beyond_suite.hpp, docs/controller.md "The beyond suite").
+int runBeyondSuite(const BenchOptions& o) {
+  const std::filesystem::path file = o.sweep.empty() ? shippedSweepFile("beyond") : std::filesystem::path(o.sweep);
+  io::OutputChecks files;  // every output checked before any work (docs/reliability.md)
+  files.input("--sweep", file.string());
+  files.input("--vehicle", o.vehicle);
+  files.input("--truth", truthInputFile(o.truth));
+  files.input("--controller-params", o.controller_params);
+  files.output("--json", o.json);
+  files.directory("--report", o.report);
+  files.check();
+  experiments::SweepSpec spec = experiments::loadSweepFile(file);
+  (void)pick(spec.scenarios, o.cases, "--cases", [](const experiments::SweepScenario& s) { return s.name; });
+  (void)pick(spec.controllers, o.controllers, "--controllers",
+             [](const experiments::SuiteController& k) { return k.name; });
+  // --vehicle and --truth replace the file's; the fingerprint (the calibration's memo key) says so.
+  if (!o.vehicle.empty() || !o.truth.empty()) {
+    spec.vehicle = benchVehicle(o);
+    spec.world = benchWorld(o, spec.vehicle);
+    spec.world_reference = o.truth.empty() ? "default" : o.truth;
+    spec.fingerprint += "|vehicle=" + o.vehicle + "|truth=" + o.truth;
+  }
+  if (!o.controller_params.empty()) spec.controller_values = io::loadControllerParamsFile(o.controller_params);
+  spec.first_seed = o.first_seed;
+  spec.seed_count = static_cast<std::uint64_t>(o.seeds);
+  experiments::BeyondOptions c;
+  c.scenarios = o.cases;
+  c.controllers = o.controllers;
+  c.jobs = o.jobs;
+  c.collect_series = !o.report.empty();
+  TerminalProgress progress("geaware bench", o.quiet);
+  c.progress = &progress;
+  const experiments::BeyondResult r = experiments::runBeyond(spec, c);
+  progress.end();
+  std::vector<std::uint64_t> seeds = r.seeds;
+  const io::RunInfo run = runInfo(seeds, {file.string(), o.vehicle, truthInputFile(o.truth), o.controller_params});
+  std::FILE* human = o.json == "-" ? stderr : stdout;
+  fmt::print(human, "{}\nworld: {}\n{}", commandLine(), spec.world.source, experiments::formatBeyond(r));
+  std::fflush(human);
+  if (!o.json.empty()) writeJsonOutput(o.json, experiments::beyondJson(r), run);
+  if (!o.report.empty()) {
+    const auto html = experiments::writeBeyondReport(r, o.report, run, o.png);
+    std::cerr << "geaware bench: wrote " << html.string() << " and a page per scenario"
+              << (o.png ? " and beyond.png" : "") << "\n";
+  }
+  if (o.check) {
+    for (const auto& chk : r.checks) {
+      if (!chk.pass) return 3;
+    }
+  }
+  return 0;
+}
+
 int runBench(const BenchOptions& o) {
   if (o.truth_mismatch) {
     throw UsageError(
@@ -208,6 +286,7 @@ int runBench(const BenchOptions& o) {
   }
   if (o.suite == "robustness") return runRobustnessSuite(o);
   if (o.suite == "faults") return runFaultSuite(o);
+  if (o.suite == "beyond") return runBeyondSuite(o);
   experiments::CampaignOptions c;
   c.vehicle = benchVehicle(o);
   c.world = benchWorld(o, c.vehicle);
@@ -274,17 +353,24 @@ Runner addBenchCommand(CLI::App& app) {
                   "'table': the paper's Table I and hover experiment; 'robustness': every Table I "
                   "configuration, indi:indi and recommended in worlds changed after the "
                   "calibration (docs/robustness.md); 'faults': the paper's configuration, INDI and "
-                  "recommended with a motor, sensor, battery or gust fault mid-flight (docs/reliability.md)")
-      ->check(CLI::IsMember({"table", "robustness", "faults"}))
+                  "recommended with a motor, sensor, battery or gust fault mid-flight (docs/reliability.md); "
+                  "'beyond': the paper's configuration, INDI and recommended past the paper: a table edge, "
+                  "a step, a ramp, a ceiling, a wall, 5 m/s low, a landing, a take-off, learning in flight "
+                  "(docs/controller.md)")
+      ->check(CLI::IsMember({"table", "robustness", "faults", "beyond"}))
       ->capture_default_str();
   cmd->add_option("--cases", o->cases,
                   "robustness, faults: fly only these cases, comma separated (default: all; names in "
-                  "docs/robustness.md, e.g. none,mass+10%)")
+                  "docs/robustness.md, e.g. none,mass+10%); beyond: only these scenarios (e.g. landing,takeoff)")
       ->delimiter(',');
   cmd->add_option("--controllers", o->controllers,
-                  "robustness, faults: fly only these configurations, comma separated (default: all; e.g. "
+                  "robustness, faults, beyond: fly only these configurations, comma separated (default: all; e.g. "
                   "model:model_indi,recommended)")
       ->delimiter(',');
+  cmd->add_option("--sweep", o->sweep,
+                  "beyond: the suite's sweep file (docs/sweeps.md; default: the shipped "
+                  "config/sweeps/beyond.yaml); its scenarios and controllers, flown in its first case's world")
+      ->check(CLI::ExistingFile);
   addVehicleOption(cmd, o->vehicle,
                    "vehicle YAML file (default: the built-in paper quadrotor); the controller gets it "
                    "with the parameters identified on the virtual rigs; without --truth the world is "
@@ -297,7 +383,7 @@ Runner addBenchCommand(CLI::App& app) {
                  "the world the rigs and flights run in: a truth file (docs/truth-file.md; any "
                  "vehicle file is one) or a built-in world (ideal, as_built) (default: as_built with "
                  "the built-in vehicle)");
-  cmd->add_option("--seeds", o->seeds, "flights per experiment and hover curve")
+  cmd->add_option("--seeds", o->seeds, "flights per experiment, hover curve or suite cell")
       ->capture_default_str()
       ->check(wholeIn(1, 1000));
   cmd->add_option("--first-seed", o->first_seed, "seeds are first-seed … first-seed + seeds − 1")
@@ -311,7 +397,8 @@ Runner addBenchCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(wholeIn(0, 256));
   cmd->add_option("--json", o->json, "write the results as JSON ('-': stdout, the summary goes to stderr)");
-  cmd->add_option("--report", o->report, "write an HTML report (bench.html) into DIR");
+  cmd->add_option("--report", o->report, "write an HTML report into DIR (bench.html; robustness.html; beyond.html "
+                  "and a page per scenario)");
   cmd->add_option("--cache", o->cache,
                   "directory of the cached Neural-Lander weights (default: $XDG_CACHE_HOME/geaware, "
                   "else ~/.cache/geaware; without it, or when it cannot be written, a warning and no cache)");
@@ -329,7 +416,8 @@ Runner addBenchCommand(CLI::App& app) {
       ->check(CLI::IsMember({"paper", "table"}))
       ->capture_default_str();
   cmd->add_flag("--check", o->check, "exit with status 3 when an acceptance check fails");
-  cmd->add_flag("--png", o->png, "with --report: also the whole page as DIR/bench.png (Chromium)");
+  cmd->add_flag("--png", o->png, "with --report: also the whole page as DIR/bench.png (Chromium; "
+                                 "robustness.png, beyond.png for those suites)");
   cmd->add_flag("--quiet", o->quiet, "no progress on stderr");
   cmd->parse_complete_callback([o]() {
     if (o->first_seed > std::numeric_limits<std::uint64_t>::max() - static_cast<std::uint64_t>(o->seeds - 1)) {
@@ -343,7 +431,14 @@ Runner addBenchCommand(CLI::App& app) {
                                             "--suite table only");
     }
     if (o->suite == "table" && (!o->cases.empty() || !o->controllers.empty())) {
-      throw CLI::ValidationError("--cases", "--cases and --controllers need --suite robustness or faults");
+      throw CLI::ValidationError("--cases", "--cases and --controllers need --suite robustness, faults or beyond");
+    }
+    if (o->suite != "beyond" && !o->sweep.empty()) {
+      throw CLI::ValidationError("--sweep", "--sweep applies to --suite beyond");
+    }
+    if (o->suite == "beyond" && (!o->cache.empty() || o->no_cache)) {
+      throw CLI::ValidationError("--cache", "--cache and --no-cache apply to --suite table and robustness "
+                                            "(the beyond suite's shipped sweep flies no neural network)");
     }
     if (o->suite != "table" && !o->neural_weights.empty()) {
       throw CLI::ValidationError("--neural-weights", "applies to --suite table (the robustness suite trains its "

@@ -132,11 +132,7 @@ io::Json faultSuiteJson(const FaultSuiteResult& r) {
     cells.push_back(std::move(j));
   }
   doc["cells"] = std::move(cells);
-  io::Json checks = io::Json::array();
-  for (const auto& c : r.checks) {
-    checks.push_back({{"name", c.name}, {"criterion", c.criterion}, {"value", c.value}, {"pass", c.pass}});
-  }
-  doc["checks"] = std::move(checks);
+  doc["checks"] = suiteChecksJson(r.checks);
   doc["timing"] = {{"threads", r.threads}, {"flights", r.flights}, {"simulated_s", r.simulated_s},
                    {"calibration_s", r.calibration_s}, {"flights_s", r.flights_s}, {"wall_s", r.wall_s}};
   return doc;

@@ -81,6 +81,12 @@ report::HeatMap rmseMap(const RobustnessResult& r, const SuiteCondition& cond) {
 
 }  // namespace
 
+report::Table suiteChecksTable(const std::vector<SuiteCheck>& checks) {
+  report::Table t{"The issue's checks of `recommended`, as they are", {"check", "criterion", "measured", "result"}, {}};
+  for (const auto& c : checks) t.rows.push_back({c.name, c.criterion, c.value, c.pass ? "pass" : "FAIL"});
+  return t;
+}
+
 report::Page robustnessPage(const RobustnessResult& r, const io::RunInfo& run) {
   report::Page page("geaware bench --suite robustness");
   page.addText(fmt::format(
@@ -91,13 +97,7 @@ report::Page robustnessPage(const RobustnessResult& r, const io::RunInfo& run) {
       "docs/robustness.md.",
       r.calibrations.empty() || !r.calibrations.front().neural ? "" : ", Neural-Lander training",
       r.flights, r.simulated_s, r.threads, r.threads == 1 ? "" : "s", r.wall_s, r.recommended));
-  report::Table checks{"The issue's checks of `recommended`, as they are",
-                       {"check", "criterion", "measured", "result"},
-                       {}};
-  for (const auto& c : r.checks) {
-    checks.rows.push_back({c.name, c.criterion, c.value, c.pass ? "pass" : "FAIL"});
-  }
-  page.addTable(std::move(checks));
+  page.addTable(suiteChecksTable(r.checks));
   report::Table cases{"Cases", {"case", "what changes"}, {}};
   for (const auto& p : r.cases) cases.rows.push_back({p.name, p.meaning()});
   page.addTable(std::move(cases));

@@ -257,6 +257,14 @@ io::Json suiteCellJson(const SuiteCell& c) {
   return j;
 }
 
+io::Json suiteChecksJson(const std::vector<SuiteCheck>& checks) {
+  io::Json out = io::Json::array();
+  for (const auto& c : checks) {
+    out.push_back({{"name", c.name}, {"criterion", c.criterion}, {"value", c.value}, {"pass", c.pass}});
+  }
+  return out;
+}
+
 io::Json robustnessJson(const RobustnessResult& r) {
   io::Json doc = {{"geaware_version", io::geawareVersion()},
                   {"suite", "robustness"},
@@ -271,11 +279,7 @@ io::Json robustnessJson(const RobustnessResult& r) {
   io::Json cells = io::Json::array();
   for (const auto& c : r.cells) cells.push_back(suiteCellJson(c));
   doc["cells"] = std::move(cells);
-  io::Json checks = io::Json::array();
-  for (const auto& c : r.checks) {
-    checks.push_back({{"name", c.name}, {"criterion", c.criterion}, {"value", c.value}, {"pass", c.pass}});
-  }
-  doc["checks"] = std::move(checks);
+  doc["checks"] = suiteChecksJson(r.checks);
   io::Json cal = io::Json::array();
   for (const auto& w : r.calibrations) {
     io::Json params = io::Json::array();

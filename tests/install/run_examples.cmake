@@ -90,6 +90,17 @@ if(NOT pages)
   message(FATAL_ERROR "installed geaware fly --report wrote no page:\n${out}\n${err}")
 endif()
 
+# The installed command line's shipped suite: `bench --suite beyond` reads the sweep file
+# installed beside it, not the source tree's.
+execute_process(COMMAND ${prefix}/bin/geaware bench --suite beyond --cases landing --controllers recommended
+                        --seeds 1 --quiet
+                WORKING_DIRECTORY ${WORK_DIR}/elsewhere RESULT_VARIABLE rc
+                OUTPUT_VARIABLE out ERROR_VARIABLE err)
+string(FIND "${out}" "Beyond suite (${prefix}/share/geaware/config/sweeps/beyond.yaml)" at)
+if(NOT rc EQUAL 0 OR at EQUAL -1)
+  message(FATAL_ERROR "installed geaware bench --suite beyond (${rc}) did not fly the installed sweep file:\n${out}\n${err}")
+endif()
+
 # Built with the Python module (GEAWARE_PYTHON): the installed package imports from another
 # directory and loads the installed vehicle file.
 if(PYTHON)

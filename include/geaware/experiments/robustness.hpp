@@ -230,6 +230,11 @@ struct PairedComparison {
 /// One cell in the shared suite schema.
 [[nodiscard]] io::Json suiteCellJson(const SuiteCell& c);
 
+/// A suite's checks in its JSON: [{"name", "criterion", "value", "pass"}, …].
+[[nodiscard]] io::Json suiteChecksJson(const std::vector<SuiteCheck>& checks);
+/// A suite's checks as a report table (check, criterion, measured, result).
+[[nodiscard]] report::Table suiteChecksTable(const std::vector<SuiteCheck>& checks);
+
 /// The report page: the checks, then per height/speed two heat maps (strikes, all-RMSE) case ×
 /// controller, and the calibrations.
 [[nodiscard]] report::Page robustnessPage(const RobustnessResult& r, const io::RunInfo& run);

@@ -1,0 +1,197 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The beyond suite (experiments/beyond_suite.hpp): its flights are the sweep's own, the last lap
+// is the second half of two symmetric laps, the ranking puts a struck flight below every
+// finished one, and each check fails where the issue's bar is missed.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <string>
+
+#include "geaware/experiments/beyond_suite.hpp"
+#include "geaware/experiments/sweep.hpp"
+#include "geaware/io/json.hpp"
+#include "sweep_support.hpp"
+
+namespace ex = geaware::experiments;
+namespace fs = std::filesystem;
+using geaware::sweep_test::sourceDir;
+using geaware::sweep_test::slurp;
+using geaware::sweep_test::TempDir;
+
+namespace {
+
+const ex::SweepSpec& beyondSpec() {
+  static const ex::SweepSpec s = [] {
+    ex::SweepSpec spec = ex::loadSweepFile(sourceDir() / "config/sweeps/beyond.yaml");
+    spec.seed_count = 1;
+    return spec;
+  }();
+  return s;
+}
+
+ex::BeyondFlight flight(std::uint64_t seed, bool struck, double rmse_cm) {
+  ex::BeyondFlight f;
+  f.suite.seed = seed;
+  f.suite.struck = struck;
+  f.suite.rmse_all_cm = rmse_cm;
+  return f;
+}
+
+ex::BeyondCell cell(const std::string& scenario, const std::string& controller,
+                    std::vector<ex::BeyondFlight> flights) {
+  return {scenario, controller, std::move(flights)};
+}
+
+/// A result of one plain scenario "s" with the given cells (no flight flown).
+ex::BeyondResult result(std::vector<ex::BeyondCell> cells) {
+  ex::BeyondResult r;
+  ex::BeyondScenario s;
+  s.sweep.name = "s";
+  r.scenarios.push_back(s);
+  for (const auto& c : cells) r.controllers.push_back(c.controller);
+  r.cells = std::move(cells);
+  return r;
+}
+
+const ex::SuiteCheck& check(const std::vector<ex::SuiteCheck>& checks, const std::string& name) {
+  for (const auto& c : checks) {
+    if (c.name == name) return c;
+  }
+  throw std::runtime_error("no check " + name);
+}
+
+}  // namespace
+
+TEST(BeyondSuite, AStruckFlightRanksBelowAndRmseIsComparedOnSeedsBothFinished) {
+  const auto rec = cell("s", "recommended", {flight(1, false, 1.0), flight(2, false, 2.0), flight(3, true, 0.1)});
+  const auto paper = cell("s", "model:model_indi", {flight(1, false, 4.0), flight(2, true, 0.5), flight(3, false, 6.0)});
+  const ex::BeyondComparison c = ex::compareBeyond(rec, paper);
+  EXPECT_EQ(c.both_finished, 1);
+  EXPECT_EQ(c.only_first_struck, 1);   // seed 3
+  EXPECT_EQ(c.only_second_struck, 1);  // seed 2
+  EXPECT_DOUBLE_EQ(c.first_rmse_cm, 1.0);
+  EXPECT_DOUBLE_EQ(c.second_rmse_cm, 4.0);
+  EXPECT_DOUBLE_EQ(c.ratio(), 0.25);
+}
+
+TEST(BeyondSuite, TheBarsAreTheIssuesAndAStrikeFailsThem) {
+  // 0.69× the paper's passes, 0.71× does not; every seed of the paper struck passes (it ranks
+  // below); recommended struck where INDI finished fails however low its other errors.
+  const auto passing = result({cell("s", "model:model_indi", {flight(1, false, 10.0)}),
+                               cell("s", "indi:none", {flight(1, false, 6.9)}),
+                               cell("s", "recommended", {flight(1, false, 6.9)})});
+  auto checks = ex::beyondChecks(passing);
+  EXPECT_TRUE(check(checks, "vs the paper's configuration").pass) << check(checks, "vs the paper's configuration").value;
+  EXPECT_TRUE(check(checks, "vs INDI").pass);
+  EXPECT_TRUE(check(checks, "no strike").pass);
+
+  auto missing = passing;
+  missing.cells[2].flights[0].suite.rmse_all_cm = 7.1;
+  checks = ex::beyondChecks(missing);
+  EXPECT_FALSE(check(checks, "vs the paper's configuration").pass);
+  EXPECT_NE(check(checks, "vs the paper's configuration").value.find("0.71×"), std::string::npos);
+  EXPECT_FALSE(check(checks, "vs INDI").pass);  // 7.1 > 6.9
+
+  const auto paper_struck = result({cell("s", "model:model_indi", {flight(1, true, 0.0)}),
+                                    cell("s", "recommended", {flight(1, false, 3.0)})});
+  EXPECT_TRUE(check(ex::beyondChecks(paper_struck), "vs the paper's configuration").pass);
+
+  const auto rec_struck = result({cell("s", "indi:none", {flight(1, false, 30.0), flight(2, false, 30.0)}),
+                                  cell("s", "recommended", {flight(1, false, 1.0), flight(2, true, 0.0)})});
+  checks = ex::beyondChecks(rec_struck);
+  EXPECT_FALSE(check(checks, "vs INDI").pass);
+  EXPECT_FALSE(check(checks, "no strike").pass);
+  // Without the paper's configuration its check is not passed silently.
+  EXPECT_FALSE(check(checks, "vs the paper's configuration").pass);
+}
+
+TEST(BeyondSuite, LandingCheckNeedsASoftTouchdownOnEverySeed) {
+  auto r = result({cell("s", "recommended", {flight(1, false, 2.0), flight(2, false, 2.0)})});
+  r.scenarios[0].kind = ex::BeyondKind::kLanding;
+  geaware::experiments::GroundContactSummary g;
+  g.touched = true;
+  g.touchdown_t_s = 5.0;
+  g.touchdown_speed_mps = 0.10;
+  g.bounce_m = 0.002;
+  r.cells[0].flights[0].contact = g;
+  r.cells[0].flights[1].contact = g;
+  EXPECT_TRUE(check(ex::beyondChecks(r), "landing").pass);
+  r.cells[0].flights[1].contact->touchdown_speed_mps = 0.16;
+  EXPECT_FALSE(check(ex::beyondChecks(r), "landing").pass);
+  r.cells[0].flights[1].contact->touchdown_speed_mps = 0.10;
+  r.cells[0].flights[1].contact->bounce_m = 0.011;
+  EXPECT_FALSE(check(ex::beyondChecks(r), "landing").pass);
+  r.cells[0].flights[1].contact.reset();  // never touched down
+  EXPECT_FALSE(check(ex::beyondChecks(r), "landing").pass);
+}
+
+TEST(BeyondSuite, ItsFlightsAreTheSweepsOwn) {
+  // The landing, flown by the suite and by the sweep's runner for the same key: the same numbers
+  // to the last bit.
+  ex::BeyondOptions o;
+  o.scenarios = {"landing"};
+  o.controllers = {"recommended"};
+  o.jobs = 1;
+  const ex::BeyondResult r = ex::runBeyond(beyondSpec(), o);
+  ASSERT_EQ(r.cells.size(), 1u);
+  ASSERT_EQ(r.cells[0].flights.size(), 1u);
+  const ex::BeyondFlight& f = r.cells[0].flights[0];
+  const auto key = ex::sweepKeyText(beyondSpec(), ex::parseSweepKey(beyondSpec(), "case=none/ctl=recommended/scn=landing/seed=1"));
+  const auto record = geaware::io::Json::parse(ex::runSweepFlight(beyondSpec(), key));
+  EXPECT_EQ(record["rmse_all_cm"].get<double>(), f.suite.rmse_all_cm);
+  EXPECT_EQ(record["max_cm"].get<double>(), f.suite.max_cm);
+  ASSERT_TRUE(f.contact.has_value());
+  EXPECT_EQ(record["touchdown_speed_mps"].get<double>(), f.contact->touchdown_speed_mps);
+  EXPECT_EQ(record["bounce_m"].get<double>(), f.contact->bounce_m);
+  EXPECT_EQ(r.scenarios[0].kind, ex::BeyondKind::kLanding);
+
+  // The JSON: the suite schema, the landing's touchdown fields in the cell and per seed.
+  const geaware::io::Json doc = ex::beyondJson(r);
+  EXPECT_EQ(doc["suite"], "beyond");
+  ASSERT_EQ(doc["cells"].size(), 1u);
+  EXPECT_EQ(doc["cells"][0]["case"], "landing");
+  EXPECT_EQ(doc["cells"][0]["touchdown_speed_mps"].get<double>(), f.contact->touchdown_speed_mps);
+  EXPECT_EQ(doc["cells"][0]["per_seed"][0]["bounce_m"].get<double>(), f.contact->bounce_m);
+}
+
+TEST(BeyondSuite, TheLastLapOfTwoSymmetricLapsIsTheSecondHalfAndTheReportHasAPagePerScenario) {
+  ex::BeyondOptions o;
+  o.scenarios = {"adapt-2-laps", "ceiling-15cm"};
+  o.controllers = {"recommended"};
+  o.collect_series = true;
+  const ex::BeyondResult r = ex::runBeyond(beyondSpec(), o);
+  ASSERT_EQ(r.scenarios.size(), 2u);
+  const ex::BeyondScenario& laps = r.scenarios[0];
+  EXPECT_EQ(laps.laps, 2);
+  EXPECT_NEAR(laps.last_lap_from_s, 0.5 * laps.sweep.trajectory->duration(), 1e-6);
+  const ex::BeyondFlight& f = r.cells[0].flights[0];
+  ASSERT_FALSE(f.suite.struck);
+  EXPECT_TRUE(std::isfinite(f.last_lap_rmse_cm));
+  EXPECT_GT(f.last_lap_rmse_cm, 0.0);
+  EXPECT_NE(f.last_lap_rmse_cm, f.suite.rmse_all_cm);  // half the samples, not all of them
+  EXPECT_TRUE(std::isnan(r.scenarios[1].last_lap_from_s));  // one lap: no last-lap figure
+  ASSERT_TRUE(r.cells[1].flights[0].min_obstacle_clearance_m.has_value());
+
+  TempDir dir("beyond-report");
+  const fs::path index = ex::writeBeyondReport(r, dir.path(), {}, false);
+  EXPECT_EQ(index.filename(), "beyond.html");
+  const std::string ceiling = slurp(dir.path() / "beyond-02-ceiling-15cm.html");
+  EXPECT_NE(ceiling.find("Seen from the side"), std::string::npos);
+  EXPECT_NE(ceiling.find("\"ceiling\""), std::string::npos) << "the box's outline is drawn, by name";
+  EXPECT_NE(slurp(index).find("beyond-01-adapt-2-laps.html"), std::string::npos);
+}
+
+TEST(BeyondSuite, UnknownNamesAreRefusedNamingTheValidOnes) {
+  ex::BeyondOptions o;
+  o.scenarios = {"roof"};
+  try {
+    (void)ex::runBeyond(beyondSpec(), o);
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("no scenario 'roof' (expected one of table-edge"), std::string::npos)
+        << e.what();
+  }
+}
