@@ -120,9 +120,20 @@ LatticeHeight LatticeHeightEstimator::estimate(const model::RangerFrame& frame,
     return out;
   }
 
-  // 3. The ground: the surface under the rotor-plane centre.
-  double dist = 0.0;
-  const int g = surfaceUnder(w, Eigen::Vector3d::Zero(), dist);
+  // 3. The ground: the surface under the rotor-plane centre; with per-rotor heights, the
+  //    surfaces under the rotors in the same pass.
+  const bool rotors = p.diagonal_rotor_distance_m > 0.0;
+  std::array<Eigen::Vector3d, kUnderPoints> P;
+  P[0] = Eigen::Vector3d::Zero();
+  std::array<int, kUnderPoints> owner{};
+  std::array<double, kUnderPoints> dist{};
+  if (rotors) {
+    for (std::size_t r = 0; r < 4; ++r) P[r + 1] = R * rotors_B_[r];
+    surfacesUnder(w, P, owner, dist);
+  } else {
+    owner[0] = surfaceUnder(w, P[0], dist[0]);
+  }
+  const int g = owner[0];
   const GroundPlane& ground = out.planes[static_cast<std::size_t>(g)];
 
   // 4. Height along −z_W: the point (0, 0, −h) lies on n·X = c, so h = −c / n_z.
@@ -134,16 +145,16 @@ LatticeHeight LatticeHeightEstimator::estimate(const model::RangerFrame& frame,
     out.status = LatticeStatus::kSurfaceAbove;
     return out;
   }
-  if (p.diagonal_rotor_distance_m > 0.0) {
+  if (rotors) {
     for (std::size_t r = 0; r < 4; ++r) {
-      const Eigen::Vector3d P = R * rotors_B_[r];
-      const int o = surfaceUnder(w, P, out.rotor_support_distance_m[r]);
+      const int o = owner[r + 1];
+      out.rotor_support_distance_m[r] = dist[r + 1];
       const GroundPlane& pl = out.planes[static_cast<std::size_t>(o)];
-      out.rotor_height_m[r] = (pl.normal_W.dot(P) - pl.offset_m) / pl.normal_W.z();
+      out.rotor_height_m[r] = (pl.normal_W.dot(P[r + 1]) - pl.offset_m) / pl.normal_W.z();
       out.rotor_height_offset_m[r] =
           o == g ? 0.0
                  : out.rotor_height_m[r] -
-                       (ground.normal_W.dot(P) - ground.offset_m) / ground.normal_W.z();
+                       (ground.normal_W.dot(P[r + 1]) - ground.offset_m) / ground.normal_W.z();
     }
   }
   out.status = LatticeStatus::kOk;

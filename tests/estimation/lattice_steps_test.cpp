@@ -201,3 +201,58 @@ TEST(LatticeSteps, FitPlaneOnAListEqualsTheFlaggedFitBitForBit) {
 }
 
 }  // namespace
+
+// The one-pass search for the centre and the rotors gives, for each target, exactly what
+// surfaceUnder gives: over random labellings (unlabelled, discarded and three surfaces) and
+// targets inside, at the edge of and outside the points.
+TEST(LatticeSteps, SurfacesUnderEqualsSurfaceUnderForEachTarget) {
+  std::mt19937_64 rng(7);
+  std::uniform_int_distribution<int> label(-2, 2);
+  std::uniform_real_distribution<double> coord(-0.6, 0.6);
+  for (int trial = 0; trial < 200; ++trial) {
+    Points w = grid(16, -0.3, 0.0, 0.0, 0.04);
+    for (int i = 0; i < w.n; ++i) w.label[static_cast<std::size_t>(i)] = label(rng);
+    if (trial % 50 == 0) {  // none labelled: no owner, infinite distance
+      for (int i = 0; i < w.n; ++i) w.label[static_cast<std::size_t>(i)] = kUnassigned;
+    }
+    std::array<Vector3d, kUnderPoints> P;
+    for (auto& p : P) p = Vector3d(coord(rng), coord(rng), coord(rng));
+    if (trial % 7 == 0) P[2] = w.X[17];  // on a point: distance 0
+    std::array<int, kUnderPoints> owner{};
+    std::array<double, kUnderPoints> dist{};
+    surfacesUnder(w, P, owner, dist);
+    for (std::size_t t = 0; t < kUnderPoints; ++t) {
+      double d = 0.0;
+      EXPECT_EQ(owner[t], surfaceUnder(w, P[t], d)) << "trial " << trial << " target " << t;
+      EXPECT_EQ(dist[t], d) << "trial " << trial << " target " << t;
+    }
+  }
+}
+
+// The zones' unit rays are kept per thread and ranger geometry: frames of two geometries in
+// turn each get their own rays (the points of the zones straight below and at a corner).
+TEST(LatticeSteps, CollectPointsFollowsTheFramesGeometryFromFrameToFrame) {
+  const Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  for (int round = 0; round < 3; ++round) {
+    for (const auto& [side, fov_deg] : {std::pair{16, 45.0}, std::pair{8, 60.0}, std::pair{16, 30.0}}) {
+      geaware::model::RangerFrame f;
+      f.side = side;
+      f.fov_rad = fov_deg * M_PI / 180.0;
+      f.mount_B = Vector3d(0.01, -0.02, -0.03);
+      for (int k = 0; k < side * side; ++k) {
+        f.valid[static_cast<std::size_t>(k)] = true;
+        f.range_m[static_cast<std::size_t>(k)] = 0.5 + 0.001 * k;
+      }
+      Points w;
+      int discarded = 0;
+      collectPoints(f, R, Vector3d::Zero(), 0.01, 4.0, w, discarded);
+      ASSERT_EQ(w.n, side * side);
+      for (const auto& [i, j] : {std::pair{0, 0}, std::pair{side / 2, side / 2 - 1}, std::pair{side - 1, 0}}) {
+        const int k = f.index(i, j);
+        const Vector3d expected = f.mount_B + f.range_m[static_cast<std::size_t>(k)] * f.zoneDirection_B(i, j);
+        EXPECT_NEAR((w.X[static_cast<std::size_t>(k)] - expected).norm(), 0.0, 1e-12)
+            << "side " << side << ", fov " << fov_deg << "°, zone (" << i << ", " << j << ")";
+      }
+    }
+  }
+}

@@ -103,7 +103,8 @@ def test_gil_is_released_while_flying():
     thread.start()
     try:
         t0 = time.perf_counter()
-        geaware.fly(trajectory="lemniscate", height_m=0.5, speed_mps=1.0,
+        # Ten laps: long enough (≈ 0.4 s here) on a fast, idle machine too.
+        geaware.fly(trajectory="lemniscate", height_m=0.5, speed_mps=1.0, laps=10,
                     controller="recommended", seed=1)
         t1 = time.perf_counter()
     finally:

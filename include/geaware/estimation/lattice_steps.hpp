@@ -120,4 +120,10 @@ SurfaceResult extractSurface(Points& w, int s, int slot, int side, const Lattice
 /// to P's vertical, and that horizontal distance in `dist`; −1 when no point is labelled.
 int surfaceUnder(const Points& w, const Eigen::Vector3d& P, double& dist) noexcept;
 
+/// surfaceUnder for the rotor-plane centre and the four rotor centres at once (one pass over
+/// the points; for each the same owner and distance as surfaceUnder gives).
+inline constexpr int kUnderPoints = 5;
+void surfacesUnder(const Points& w, const std::array<Eigen::Vector3d, kUnderPoints>& P,
+                   std::array<int, kUnderPoints>& owner, std::array<double, kUnderPoints>& dist) noexcept;
+
 }  // namespace geaware::estimation::lattice
