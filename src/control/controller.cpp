@@ -2,11 +2,14 @@
 #include "geaware/control/controller.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 
 #include "controller_internal.hpp"
 #include "geaware/control/allocation.hpp"
+#include "geaware/model/finite.hpp"
 #include "geaware/model/imu_limits.hpp"
 #include "geaware/model/rotation.hpp"
 #include "geaware/model/units.hpp"
@@ -37,9 +40,10 @@ flatness::GroundEffectTerms referenceTerms(const ControllerParams& p) {
 }
 
 
-/// Rotation with body z along `z_des` and body x perpendicular to the heading's y axis.
-Eigen::Matrix3d attitudeFrom(const Eigen::Vector3d& z_des, double yaw) {
-  const Eigen::Vector3d y_C(-std::sin(yaw), std::cos(yaw), 0.0);
+/// Rotation with body z along `z_des` and body x perpendicular to the heading's y axis, given
+/// the heading's cosine and sine.
+Eigen::Matrix3d attitudeFrom(const Eigen::Vector3d& z_des, double cos_yaw, double sin_yaw) {
+  const Eigen::Vector3d y_C(-sin_yaw, cos_yaw, 0.0);
   Eigen::Vector3d x = y_C.cross(z_des);
   const double n = x.norm();
   // z_des ⟂ y_C is excluded by the tilt limit (< 90°), so n > 0.
@@ -77,6 +81,7 @@ Controller::Controller(const model::VehicleModel& vehicle, ControllerParams para
       J_R_kgm2_(vehicle.params().rotor.J_R_kgm2),
       reference_map_(referenceMapFor(vehicle, params_)),
       dt_s_(1.0 / params_.rate_hz),
+      tan_max_tilt_(std::tan(params_.max_tilt_rad)),
       min_rotor_plane_height_m_(vehicle.params().min_rotor_plane_height_m),
       arm_m_(0.5 * vehicle.params().diagonal_rotor_distance_m),
       rotors_B_(model::Mixer::rotorPositions_B(vehicle.params().diagonal_rotor_distance_m)),
@@ -113,9 +118,9 @@ namespace {
 /// Nothing non-finite may reach the motors, nor an IMU or rotor-speed value no sensor reports.
 bool finiteInputs(const ControllerInput& in, double max_rotor_speed_rpm) noexcept {
   const double q_norm = in.estimate.q_WB.norm();
-  return in.reference.allFinite() && in.estimate.p_W.allFinite() && in.estimate.v_W.allFinite() &&
-         in.estimate.q_WB.coeffs().allFinite() && q_norm > 0.5 &&
-         model::plausibleImu(in.gyro_B, in.accel_B) && in.rotor_speeds_rpm.allFinite() &&
+  return in.reference.allFinite() && model::allFinite(in.estimate.p_W) && model::allFinite(in.estimate.v_W) &&
+         model::allFinite(in.estimate.q_WB.coeffs()) && q_norm > 0.5 &&
+         model::plausibleImu(in.gyro_B, in.accel_B) && model::allFinite(in.rotor_speeds_rpm) &&
          in.rotor_speeds_rpm.cwiseAbs().maxCoeff() <= max_rotor_speed_rpm;
 }
 
@@ -123,12 +128,12 @@ bool finiteInputs(const ControllerInput& in, double max_rotor_speed_rpm) noexcep
 bool outputFinite(const ControllerOutput& out) noexcept {
   bool ok = std::isfinite(out.thrust_des_N) && std::isfinite(out.yaw_torque_allocated_Nm) &&
             std::isfinite(out.height_used_m) && std::isfinite(out.z_cmd_m) &&
-            !std::isnan(out.guard_min_accel_z_mps2) && out.a_des_W.allFinite() &&
-            out.q_des_WB.coeffs().allFinite() && out.attitude_error.allFinite() &&
-            out.w_des_B.allFinite() && out.w_dot_des_B.allFinite() && out.tau_des_B.allFinite() &&
-            out.tau_hat_B.allFinite() && out.n_des_rpm.allFinite() && out.a_dob_W.allFinite() &&
-            out.a_int_W.allFinite() && out.a_ground_shape_W.allFinite() &&
-            out.tau_ground_shape_B.allFinite();
+            !std::isnan(out.guard_min_accel_z_mps2) && model::allFinite(out.a_des_W) &&
+            model::allFinite(out.q_des_WB.coeffs()) && model::allFinite(out.attitude_error) &&
+            model::allFinite(out.w_des_B) && model::allFinite(out.w_dot_des_B) && model::allFinite(out.tau_des_B) &&
+            model::allFinite(out.tau_hat_B) && model::allFinite(out.n_des_rpm) && model::allFinite(out.a_dob_W) &&
+            model::allFinite(out.a_int_W) && model::allFinite(out.a_ground_shape_W) &&
+            model::allFinite(out.tau_ground_shape_B);
   for (double t : out.throttle) ok = ok && std::isfinite(t);
   return ok;
 }
@@ -186,7 +191,7 @@ Eigen::Vector3d Controller::disturbanceResidual(const ControllerInput& in, doubl
                                                 const Eigen::Vector3d& a_shape_W,
                                                 const Eigen::Vector3d& a_prox_W) noexcept {
   if (!(params_.dob_time_constant_s > 0.0)) return Eigen::Vector3d::Zero();
-  if (in.external_accel_valid && in.external_accel_W.allFinite()) {
+  if (in.external_accel_valid && model::allFinite(in.external_accel_W)) {
     // What the model already accounts for in ã_ext: at the measured height, the extra thrust
     // F_G(h)·T_ref/m along z_B (with the feed-forward's thrust: a thrust or mass error times F_G
     // is a disturbance like any other) and the rotor drag at the estimated velocity. The rest is
@@ -321,7 +326,7 @@ Eigen::Vector3d Controller::thrustVectorCommand(const ControllerInput& in,
         Eigen::Vector3d f_nn = Eigen::Vector3d::Zero();
         for (int it = 0; it < params_.neural_iterations; ++it) {
           f_nn = residual_->predict_W(features);
-          if (!f_nn.allFinite()) f_nn.setZero();
+          if (!model::allFinite(f_nn)) f_nn.setZero();
           const double thrust = std::max(mass_kg_ * (f_cmd - f_nn / mass_kg_).dot(z_B), 0.0);
           features.rotor_speeds_rpm.setConstant(std::sqrt(thrust / (4.0 * k_T_N_per_rpm2_)));
         }
@@ -339,7 +344,7 @@ Eigen::Vector3d Controller::thrustVectorCommand(const ControllerInput& in,
   // Tilt limit: keep the vertical component, shorten the horizontal one.
   if (f_cmd.z() < 1e-3) f_cmd.z() = 1e-3;
   const double horiz = f_cmd.head<2>().norm();
-  const double max_horiz = f_cmd.z() * std::tan(params_.max_tilt_rad);
+  const double max_horiz = f_cmd.z() * tan_max_tilt_;
   if (horiz > max_horiz) {
     f_cmd.head<2>() *= max_horiz / horiz;
     flags |= kFlagTiltLimited;
@@ -404,7 +409,13 @@ ControllerOutput Controller::step(const ControllerInput& in) noexcept {
 
   // 3. Attitude, body-rate and body-acceleration commands (paper eq. 32).
   const Eigen::Vector3d z_des = f_cmd.normalized();
-  const Eigen::Quaterniond q_des(attitudeFrom(z_des, in.reference.yaw_rad));
+  // Compared bit for bit: −0 is not +0 here (sin(−0) = −0).
+  if (std::bit_cast<std::uint64_t>(in.reference.yaw_rad) != std::bit_cast<std::uint64_t>(yaw_cached_rad_)) {
+    yaw_cached_rad_ = in.reference.yaw_rad;
+    cos_yaw_ = std::cos(yaw_cached_rad_);
+    sin_yaw_ = std::sin(yaw_cached_rad_);
+  }
+  const Eigen::Quaterniond q_des(attitudeFrom(z_des, cos_yaw_, sin_yaw_));
   // Attitude error ξ_e = ξ̂⁻¹∘ξ_des as an angle vector (paper eq. 32), the short way round.
   const Eigen::Vector3d xi_e = model::logMap(q_est.conjugate() * q_des);
   const Eigen::Vector3d w_des = params_.k_xi_per_s.cwiseProduct(xi_e) + ref.w_B;

@@ -6,6 +6,7 @@
 
 #include "controller_internal.hpp"
 #include "geaware/control/controller.hpp"
+#include "geaware/model/finite.hpp"
 
 namespace geaware::control {
 
@@ -16,7 +17,7 @@ Controller::GroundShapeTerms Controller::groundShapeTerms(const ControllerInput&
   if (!params_.per_rotor_ground_effect) return g;
   // The last valid shape is held, like the height: offsets finite and within the far-from-ground
   // height, the normal a finite unit vector no steeper than 60°.
-  bool ok = in.ground_shape_valid && in.ground_normal_W.allFinite() &&
+  bool ok = in.ground_shape_valid && model::allFinite(in.ground_normal_W) &&
             std::abs(in.ground_normal_W.norm() - 1.0) < 1e-3 && in.ground_normal_W.z() > 0.5;
   for (double d : in.rotor_height_offset_m) ok = ok && std::isfinite(d) && std::abs(d) <= detail::kFarFromGroundM;
   if (ok) {

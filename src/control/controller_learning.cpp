@@ -7,6 +7,7 @@
 
 #include "controller_internal.hpp"
 #include "geaware/control/controller.hpp"
+#include "geaware/model/finite.hpp"
 #include "geaware/model/units.hpp"
 
 namespace geaware::control {
@@ -40,7 +41,7 @@ constexpr double kLearnAboveGearM = 0.01;  ///< no sample this close above the g
 void Controller::learnGroundEffect(const ControllerInput& in) noexcept {
   // The paper's flight estimate F̃_G = m·z_Wᵀ·ã_ext/T_f, with the thrust filtered as the
   // observer filters it, at the height the ranger measured this tick.
-  if (!(in.external_accel_valid && in.height_valid && in.external_accel_W.allFinite())) return;
+  if (!(in.external_accel_valid && in.height_valid && model::allFinite(in.external_accel_W))) return;
   // Within a centimetre of the landing gear's height the feet may be on the ground (standing
   // before a take-off, touching down): its support would be learned as ground effect.
   if (in.height_m <= min_rotor_plane_height_m_ + kLearnAboveGearM) return;

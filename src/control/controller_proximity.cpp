@@ -8,6 +8,7 @@
 
 #include "controller_internal.hpp"
 #include "geaware/control/controller.hpp"
+#include "geaware/model/finite.hpp"
 #include "geaware/model/proximity_effect.hpp"
 
 namespace geaware::control {
@@ -37,7 +38,7 @@ Controller::GroundShapeTerms Controller::proximityTerms(const ControllerInput& i
   for (std::size_t k = 0; k < in.beams.size(); ++k) {
     const model::BeamReading& b = in.beams[k];
     const bool usable = b.valid && b.range_m > 0.0 && std::isfinite(b.range_m) && std::isfinite(b.t_s) &&
-                        b.direction_B.allFinite() && b.mount_B.allFinite() &&
+                        model::allFinite(b.direction_B) && model::allFinite(b.mount_B) &&
                         std::abs(b.direction_B.norm() - 1.0) <= 1e-3;
     if (!usable) {
       beam_mem_.last_range_m[k] = std::numeric_limits<double>::quiet_NaN();

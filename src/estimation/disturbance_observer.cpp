@@ -5,6 +5,7 @@
 #include <string>
 
 #include "geaware/model/field_check.hpp"
+#include "geaware/model/finite.hpp"
 #include "geaware/model/imu_limits.hpp"
 #include "geaware/model/units.hpp"
 #include "geaware/model/vehicle_model.hpp"
@@ -51,9 +52,9 @@ void DisturbanceObserver::reset() noexcept {
 namespace {
 
 bool estimateFinite(const DisturbanceEstimate& d) noexcept {
-  return std::isfinite(d.t_s) && d.a_ext_W.allFinite() && d.a_ext_B.allFinite() &&
-         d.tau_ext_B.allFinite() && std::isfinite(d.thrust_f_N) && d.tau_B_f.allFinite() &&
-         d.w_f_B.allFinite() && d.w_dot_f_B.allFinite() && std::isfinite(d.f_g_ratio);
+  return std::isfinite(d.t_s) && model::allFinite(d.a_ext_W) && model::allFinite(d.a_ext_B) &&
+         model::allFinite(d.tau_ext_B) && std::isfinite(d.thrust_f_N) && model::allFinite(d.tau_B_f) &&
+         model::allFinite(d.w_f_B) && model::allFinite(d.w_dot_f_B) && std::isfinite(d.f_g_ratio);
 }
 
 }  // namespace
@@ -69,7 +70,7 @@ DisturbanceEstimate DisturbanceObserver::update(const DisturbanceObserverInput& 
   };
   // IMU values beyond any sensor's range are refused like NaN (model/imu_limits.hpp).
   if (!(std::isfinite(in.t_s) && model::plausibleImu(in.gyro_B, in.accel_B) &&
-        in.rotor_speeds_rpm.allFinite() && in.q_WB.coeffs().allFinite() && qn > 0.5 && qn < 2.0)) {
+        model::allFinite(in.rotor_speeds_rpm) && model::allFinite(in.q_WB.coeffs()) && qn > 0.5 && qn < 2.0)) {
     return refuse(ObserverStatus::kNonFinite);
   }
   if (have_prev_ && !(in.t_s > t_prev_)) {

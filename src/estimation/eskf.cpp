@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "geaware/model/field_check.hpp"
+#include "geaware/model/finite.hpp"
 #include "geaware/model/imu_limits.hpp"
 #include "geaware/model/rotation.hpp"
 #include "geaware/model/vehicle_model.hpp"
@@ -32,10 +33,10 @@ Mat3 skew(const Vec3& w) {
   return S;
 }
 
-bool finite(const Vec3& v) { return v.allFinite(); }
+bool finite(const Vec3& v) { return model::allFinite(v); }
 bool finite(const EskfState& x, const Cov& P) {
-  return x.p_W.allFinite() && x.v_W.allFinite() && x.q_WB.coeffs().allFinite() &&
-         x.accel_bias_B.allFinite() && x.gyro_bias_B.allFinite() && P.allFinite();
+  return model::allFinite(x.p_W) && model::allFinite(x.v_W) && model::allFinite(x.q_WB.coeffs()) &&
+         model::allFinite(x.accel_bias_B) && model::allFinite(x.gyro_bias_B) && model::allFinite(P);
 }
 
 /// M ← F·M for the error-state transition of one IMU interval (Solà eq. 269), using its block
@@ -255,7 +256,7 @@ EskfStatus Eskf::addImu(const model::ImuSample& imu) noexcept {
 
 EskfStatus Eskf::addMocap(const model::MocapSample& mocap) noexcept {
   const double qn = mocap.q_WB.norm();
-  if (!(std::isfinite(mocap.t_s) && finite(mocap.p_W) && mocap.q_WB.coeffs().allFinite() &&
+  if (!(std::isfinite(mocap.t_s) && finite(mocap.p_W) && model::allFinite(mocap.q_WB.coeffs()) &&
         qn > 0.5 && qn < 2.0)) {
     ++counters_.mocap_non_finite;
     return EskfStatus::kNonFinite;

@@ -10,6 +10,7 @@
 
 #include "geaware/estimation/lattice_steps.hpp"
 #include "geaware/model/field_check.hpp"
+#include "geaware/model/finite.hpp"
 #include "geaware/model/mixer.hpp"
 #include "geaware/model/vehicle_model.hpp"
 
@@ -43,7 +44,7 @@ LatticeHeightParams LatticeHeightParams::forVehicle(const model::VehicleParams& 
 std::vector<model::FieldError> LatticeHeightParams::validate() const {
   std::vector<model::FieldError> e;
   model::FieldChecker c(e);
-  if (!rotor_plane_centre_B.allFinite()) {
+  if (!model::allFinite(rotor_plane_centre_B)) {
     c.fail("lattice.rotor_plane_centre_B", "non-finite", "a finite vector [m]");
   }
   c.nonNegative("lattice.diagonal_rotor_distance_m", diagonal_rotor_distance_m);
@@ -82,7 +83,7 @@ LatticeHeight LatticeHeightEstimator::estimate(const model::RangerFrame& frame,
 
   // 0. Guards on the frame as a whole.
   const double qn = q_WB.norm();
-  if (!(q_WB.coeffs().allFinite() && std::abs(qn - 1.0) < 1e-3 && frame.mount_B.allFinite() &&
+  if (!(model::allFinite(q_WB.coeffs()) && std::abs(qn - 1.0) < 1e-3 && model::allFinite(frame.mount_B) &&
         std::isfinite(frame.fov_rad))) {
     out.status = LatticeStatus::kNonFiniteInput;
     return out;

@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geaware/model/finite.hpp"
+
 namespace geaware::experiments {
 
 void TrackingAccumulator::add(const Eigen::Vector3d& e) noexcept {
-  if (!e.allFinite()) {
+  if (!model::allFinite(e)) {
     ++rejected_;
     return;
   }

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "geaware/model/field_check.hpp"
+#include "geaware/model/finite.hpp"
 #include "geaware/sim/obstacles.hpp"
 #include "geaware/sim/terrains.hpp"
 
@@ -121,8 +122,8 @@ const TruthParams& validated(const TruthParams& p, const PlantConfig& c, const P
   }
   bool rpm_ok = true;
   for (double n : s.n_rpm) rpm_ok &= std::isfinite(n);
-  if (!std::isfinite(s.t_s) || !s.p_W.allFinite() || !s.v_W.allFinite() ||
-      !s.q_WB.coeffs().allFinite() || !(s.q_WB.norm() > 0.5) || !s.w_B.allFinite() || !rpm_ok) {
+  if (!std::isfinite(s.t_s) || !model::allFinite(s.p_W) || !model::allFinite(s.v_W) ||
+      !model::allFinite(s.q_WB.coeffs()) || !(s.q_WB.norm() > 0.5) || !model::allFinite(s.w_B) || !rpm_ok) {
     errors.push_back({"initial state", "non-finite or degenerate",
                       "finite values and a non-degenerate quaternion"});
   }

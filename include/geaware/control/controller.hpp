@@ -260,6 +260,13 @@ class Controller {
   double J_R_kgm2_;
   flatness::FlatMap reference_map_;
   double dt_s_;
+  /// tan(params_.max_tilt_rad), the tilt limit's ratio of horizontal to vertical thrust [-].
+  double tan_max_tilt_;
+  /// The reference yaw of the last update and its cosine and sine (a reference's yaw seldom
+  /// changes from one update to the next; the same values either way) [rad], [-].
+  double yaw_cached_rad_ = 0.0;
+  double cos_yaw_ = 1.0;
+  double sin_yaw_ = 0.0;
 
   /// The landing gear's rotor-plane height [m].
   double min_rotor_plane_height_m_;

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include "geaware/model/finite.hpp"
 #include "geaware/model/units.hpp"
 
 namespace geaware::model {
@@ -17,7 +18,7 @@ inline constexpr double kImuMaxSpecificForceMps2 = 32.0 * kGravity;  ///< accel 
 /// Whether a gyro and an accelerometer reading are finite and within the full scales above.
 [[nodiscard]] inline bool plausibleImu(const Eigen::Vector3d& gyro_radps,
                                        const Eigen::Vector3d& accel_mps2) noexcept {
-  return gyro_radps.allFinite() && accel_mps2.allFinite() &&
+  return model::allFinite(gyro_radps) && model::allFinite(accel_mps2) &&
          gyro_radps.cwiseAbs().maxCoeff() <= kImuMaxRateRadps &&
          accel_mps2.cwiseAbs().maxCoeff() <= kImuMaxSpecificForceMps2;
 }

@@ -19,11 +19,13 @@ struct FlatOutput {
   double yaw_rate_radps = 0.0;                    ///< ψ̇ [rad/s]
   double yaw_acc_radps2 = 0.0;                    ///< ψ̈ [rad/s²]
 
-  /// True when every component is finite.
+  /// True when every component is finite. x·0 is ±0 for a finite x and NaN for ±∞ and NaN, so
+  /// one sum of the x·0 answers for all 18 numbers without a branch (the flat map and the
+  /// controller check every reference).
   [[nodiscard]] bool allFinite() const noexcept {
-    return p_W.allFinite() && v_W.allFinite() && a_W.allFinite() && j_W.allFinite() &&
-           s_W.allFinite() && std::isfinite(yaw_rad) && std::isfinite(yaw_rate_radps) &&
-           std::isfinite(yaw_acc_radps2);
+    const double z = (p_W * 0.0 + v_W * 0.0 + a_W * 0.0 + j_W * 0.0 + s_W * 0.0).sum() +
+                     (yaw_rad * 0.0 + yaw_rate_radps * 0.0 + yaw_acc_radps2 * 0.0);
+    return z == 0.0;
   }
 };
 
