@@ -40,6 +40,8 @@ struct BenchOptions {
   std::vector<std::string> cases;        ///< robustness, faults: the cases; beyond: the scenarios (empty: all)
   std::vector<std::string> controllers;  ///< robustness, faults, beyond: the configurations (empty: all)
   std::string sweep;  ///< beyond: the suite's sweep file (empty: the shipped one)
+  bool seeds_given = false;       ///< --seeds on the command line (beyond: replaces a --sweep file's)
+  bool first_seed_given = false;  ///< --first-seed likewise
   std::string vehicle;
   std::string truth;
   std::string controller_params;  ///< --controller-params FILE (empty: the compiled defaults)
@@ -61,12 +63,17 @@ struct BenchOptions {
 };
 
 /// The items of `all` named in `names`, in the order named; a UsageError naming `option` and
-/// the valid names for an unknown one.
+/// the valid names for an unknown one, or the name for one named twice.
 template <class T, class NameOf>
 std::vector<T> pick(const std::vector<T>& all, const std::vector<std::string>& names,
                     const std::string& option, NameOf name_of) {
   std::vector<T> out;
-  for (const auto& n : names) {
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const std::string& n = names[k];
+    if (std::find(names.begin(), names.begin() + static_cast<std::ptrdiff_t>(k), n) !=
+        names.begin() + static_cast<std::ptrdiff_t>(k)) {
+      throw UsageError(option + " '" + n + "': named twice");
+    }
     const auto it = std::find_if(all.begin(), all.end(), [&](const T& t) { return name_of(t) == n; });
     if (it == all.end()) {
       std::string valid;
@@ -227,7 +234,29 @@ std::filesystem::path shippedSweepFile(const std::string& suite) {
 /// `--suite beyond` (experiments/beyond_suite.hpp, docs/controller.md "The beyond suite").
 int runBeyondSuite(const BenchOptions& o) {
   const std::filesystem::path file = o.sweep.empty() ? shippedSweepFile("beyond") : std::filesystem::path(o.sweep);
-  io::OutputChecks files;  // every output checked before any work (docs/reliability.md)
+  // Everything is read first (the files the sweep file names among them), then the outputs are
+  // checked against all of it, before any flight.
+  experiments::SweepSpec spec = experiments::loadSweepFile(file);
+  if (spec.cases.size() != 1) {
+    throw UsageError(fmt::format("--sweep {}: {} perturbation cases; the beyond suite flies one world (give a "
+                                 "file with one case, or fly it with `geaware sweep`)",
+                                 file.string(), spec.cases.size()));
+  }
+  (void)pick(spec.scenarios, o.cases, "--cases", [](const experiments::SweepScenario& s) { return s.name; });
+  (void)pick(spec.controllers, o.controllers, "--controllers",
+             [](const experiments::SuiteController& k) { return k.name; });
+  // --vehicle, --truth and --controller-params replace the file's; the fingerprint (the key the
+  // calibration is memoised under) says so.
+  if (!o.vehicle.empty() || !o.truth.empty()) {
+    spec.vehicle = benchVehicle(o);
+    spec.world = benchWorld(o, spec.vehicle);
+    spec.world_reference = o.truth.empty() ? "default" : o.truth;
+  }
+  if (!o.controller_params.empty()) spec.controller_values = io::loadControllerParamsFile(o.controller_params);
+  spec.fingerprint += "|vehicle=" + o.vehicle + "|truth=" + o.truth + "|params=" + o.controller_params;
+  if (o.seeds_given || o.sweep.empty()) spec.seed_count = static_cast<std::uint64_t>(o.seeds);
+  if (o.first_seed_given || o.sweep.empty()) spec.first_seed = o.first_seed;
+  io::OutputChecks files;
   files.input("--sweep", file.string());
   files.input("--vehicle", o.vehicle);
   files.input("--truth", truthInputFile(o.truth));
@@ -235,20 +264,7 @@ int runBeyondSuite(const BenchOptions& o) {
   files.output("--json", o.json);
   files.directory("--report", o.report);
   files.check();
-  experiments::SweepSpec spec = experiments::loadSweepFile(file);
-  (void)pick(spec.scenarios, o.cases, "--cases", [](const experiments::SweepScenario& s) { return s.name; });
-  (void)pick(spec.controllers, o.controllers, "--controllers",
-             [](const experiments::SuiteController& k) { return k.name; });
-  // --vehicle and --truth replace the file's; the fingerprint (the calibration's memo key) says so.
-  if (!o.vehicle.empty() || !o.truth.empty()) {
-    spec.vehicle = benchVehicle(o);
-    spec.world = benchWorld(o, spec.vehicle);
-    spec.world_reference = o.truth.empty() ? "default" : o.truth;
-    spec.fingerprint += "|vehicle=" + o.vehicle + "|truth=" + o.truth;
-  }
-  if (!o.controller_params.empty()) spec.controller_values = io::loadControllerParamsFile(o.controller_params);
-  spec.first_seed = o.first_seed;
-  spec.seed_count = static_cast<std::uint64_t>(o.seeds);
+
   experiments::BeyondOptions c;
   c.scenarios = o.cases;
   c.controllers = o.controllers;
@@ -258,8 +274,7 @@ int runBeyondSuite(const BenchOptions& o) {
   c.progress = &progress;
   const experiments::BeyondResult r = experiments::runBeyond(spec, c);
   progress.end();
-  std::vector<std::uint64_t> seeds = r.seeds;
-  const io::RunInfo run = runInfo(seeds, {file.string(), o.vehicle, truthInputFile(o.truth), o.controller_params});
+  const io::RunInfo run = runInfo(r.seeds, {file.string(), o.vehicle, truthInputFile(o.truth), o.controller_params});
   std::FILE* human = o.json == "-" ? stderr : stdout;
   fmt::print(human, "{}\nworld: {}\n{}", commandLine(), spec.world.source, experiments::formatBeyond(r));
   std::fflush(human);
@@ -369,7 +384,8 @@ Runner addBenchCommand(CLI::App& app) {
       ->delimiter(',');
   cmd->add_option("--sweep", o->sweep,
                   "beyond: the suite's sweep file (docs/sweeps.md; default: the shipped "
-                  "config/sweeps/beyond.yaml); its scenarios and controllers, flown in its first case's world")
+                  "config/sweeps/beyond.yaml): its scenarios, controllers and seeds (--seeds and --first-seed "
+                  "replace them), flown in its one case's world")
       ->check(CLI::ExistingFile);
   addVehicleOption(cmd, o->vehicle,
                    "vehicle YAML file (default: the built-in paper quadrotor); the controller gets it "
@@ -419,7 +435,9 @@ Runner addBenchCommand(CLI::App& app) {
   cmd->add_flag("--png", o->png, "with --report: also the whole page as DIR/bench.png (Chromium; "
                                  "robustness.png, beyond.png for those suites)");
   cmd->add_flag("--quiet", o->quiet, "no progress on stderr");
-  cmd->parse_complete_callback([o]() {
+  cmd->parse_complete_callback([o, cmd]() {
+    o->seeds_given = cmd->count("--seeds") > 0;
+    o->first_seed_given = cmd->count("--first-seed") > 0;
     if (o->first_seed > std::numeric_limits<std::uint64_t>::max() - static_cast<std::uint64_t>(o->seeds - 1)) {
       throw CLI::ValidationError("--first-seed", "--first-seed " + std::to_string(o->first_seed) + " + --seeds " +
                                                      std::to_string(o->seeds) + " - 1 is above 2^64 - 1");
@@ -438,11 +456,11 @@ Runner addBenchCommand(CLI::App& app) {
     }
     if (o->suite == "beyond" && (!o->cache.empty() || o->no_cache)) {
       throw CLI::ValidationError("--cache", "--cache and --no-cache apply to --suite table and robustness "
-                                            "(the beyond suite's shipped sweep flies no neural network)");
+                                            "(a sweep file's neural controllers are trained by the sweep, uncached)");
     }
     if (o->suite != "table" && !o->neural_weights.empty()) {
       throw CLI::ValidationError("--neural-weights", "applies to --suite table (the robustness suite trains its "
-                                                     "own network per world; the fault suite flies none)");
+                                                     "own network per world; the fault and beyond suites fly none)");
     }
     if (o->suite == "faults" && (!o->report.empty() || !o->cache.empty() || o->no_cache)) {
       throw CLI::ValidationError("--suite", "--report and --cache apply to --suite table and robustness "

@@ -25,8 +25,9 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-/// The page file of scenario `index`: its number and its name with every byte other than
-/// A–Z a–z 0–9 . + - written '_' (distinct for distinct indices, whatever the names).
+/// The page file of the scenario at `index` in the sweep file: its number (from 1) and its name
+/// with every byte other than A–Z a–z 0–9 . + - written '_' (distinct for distinct indices,
+/// whatever the names; the same page name whichever scenarios a run picks).
 std::string pageName(std::size_t index, const std::string& name) {
   std::string safe;
   for (const char ch : name) {
@@ -81,36 +82,39 @@ std::string groundText(const sim::Terrain* terrain) {
   return level ? fmt::format("flat ground at z = {:g} m", *level) : std::string("the scenario's terrain");
 }
 
+/// Mean of `metric` over the cell's finished flights, "(k✕)" when k struck, "struck" when all did.
 std::string cellEntry(const BeyondCell* c, double SuiteFlight::*metric) {
   if (c == nullptr) return "";
-  const double v = c->meanFinished(metric);
-  return std::isnan(v) ? "struck" : fmt::format("{:.2f}", v);
+  const double v = c->suite.meanFinished(metric);
+  const int k = c->suite.strikes();
+  if (std::isnan(v)) return "struck";
+  return k > 0 ? fmt::format("{:.2f} ({}✕)", v, k) : fmt::format("{:.2f}", v);
 }
 
 /// Touchdown and lift-off of a cell, in words.
 std::string contactEntry(const BeyondCell& c) {
   double td = 0.0, bounce = 0.0, tilt = 0.0;
   int touched = 0, lifted = 0, back = 0;
-  for (const auto& f : c.flights) {
-    if (!f.contact) continue;
-    if (std::isfinite(f.contact->touchdown_speed_mps)) {
-      td = std::max(td, f.contact->touchdown_speed_mps);
-      bounce = std::max(bounce, f.contact->bounce_m);
+  for (const auto& x : c.extras) {
+    if (!x.contact) continue;
+    if (std::isfinite(x.contact->touchdown_speed_mps)) {
+      td = std::max(td, x.contact->touchdown_speed_mps);
+      bounce = std::max(bounce, x.contact->bounce_m);
       ++touched;
     }
-    lifted += std::isfinite(f.contact->liftoff_t_s) ? 1 : 0;
-    back += f.contact->recontacts;
-    tilt = std::max(tilt, f.contact->max_tilt_on_ground_deg);
+    lifted += std::isfinite(x.contact->liftoff_t_s) ? 1 : 0;
+    back += x.contact->recontacts;
+    tilt = std::max(tilt, x.contact->max_tilt_on_ground_deg);
   }
   std::string s;
   if (touched > 0) s = fmt::format("touchdown ≤ {:.3f} m/s, bounce ≤ {:.1f} mm; ", td, 1e3 * bounce);
-  if (lifted > 0) s += fmt::format("lifted off {}/{}, back down {}; ", lifted, c.flights.size(), back);
+  if (lifted > 0) s += fmt::format("lifted off {}/{}, back down {}; ", lifted, c.extras.size(), back);
   if (touched > 0 || lifted > 0) s += fmt::format("tilt on the ground ≤ {:.1f}°", tilt);
   return s;
 }
 
 report::Table cellTable(const BeyondResult& r, const std::vector<const BeyondScenario*>& scenarios) {
-  report::Table t{"Cells (means over the finished flights)",
+  report::Table t{"Cells (means over the finished flights; (k✕): k flights struck)",
                   {"scenario", "controller", "strikes", "all-RMSE [cm]", "max [cm]", "last lap [cm]",
                    "closest rim [cm]", "ground contact"},
                   {}};
@@ -118,17 +122,14 @@ report::Table cellTable(const BeyondResult& r, const std::vector<const BeyondSce
     for (const auto& ctl : r.controllers) {
       const BeyondCell* c = r.cell(scn->sweep.name, ctl);
       if (c == nullptr) continue;
-      double lap = 0.0, clearance = kNaN;
-      int n = 0;
-      for (const auto& f : c->flights) {
-        if (f.min_obstacle_clearance_m) clearance = std::fmin(clearance, *f.min_obstacle_clearance_m);
-        if (f.suite.struck) continue;
-        lap += f.last_lap_rmse_cm;
-        ++n;
+      double clearance = kNaN;
+      for (const auto& x : c->extras) {
+        if (x.min_obstacle_clearance_m) clearance = std::fmin(clearance, *x.min_obstacle_clearance_m);
       }
-      t.rows.push_back({scn->sweep.name, ctl, fmt::format("{}/{}", c->strikes(), c->flights.size()),
+      const double lap = meanLastLapCm(*c);
+      t.rows.push_back({scn->sweep.name, ctl, fmt::format("{}/{}", c->suite.strikes(), c->suite.flights.size()),
                         cellEntry(c, &SuiteFlight::rmse_all_cm), cellEntry(c, &SuiteFlight::max_cm),
-                        scn->laps >= 2 && n > 0 ? fmt::format("{:.2f}", lap / n) : "",
+                        scn->laps >= 2 && !std::isnan(lap) ? fmt::format("{:.2f}", lap) : "",
                         std::isnan(clearance) ? "" : fmt::format("{:.1f}", 100.0 * clearance),
                         contactEntry(*c)});
     }
@@ -154,9 +155,16 @@ report::HeatMap cellMap(const BeyondResult& r, bool strikes) {
     std::vector<std::string> text;
     for (const auto& ctl : r.controllers) {
       const BeyondCell* c = r.cell(scn.sweep.name, ctl);
-      const double v = c == nullptr ? kNaN : strikes ? c->strikes() : c->meanFinished(&SuiteFlight::rmse_all_cm);
-      z.push_back(v);
-      text.push_back(c == nullptr ? "" : strikes ? std::to_string(c->strikes()) : cellEntry(c, &SuiteFlight::rmse_all_cm));
+      if (c == nullptr) {
+        z.push_back(kNaN);
+        text.emplace_back();
+      } else if (strikes) {
+        z.push_back(c->suite.strikes());
+        text.push_back(std::to_string(c->suite.strikes()));
+      } else {
+        z.push_back(c->suite.meanFinished(&SuiteFlight::rmse_all_cm));
+        text.push_back(cellEntry(c, &SuiteFlight::rmse_all_cm));
+      }
     }
     m.z.push_back(std::move(z));
     m.text.push_back(std::move(text));
@@ -224,7 +232,7 @@ report::Page indexPage(const BeyondResult& r, const io::RunInfo& run) {
   page.addTable(cellTable(r, all));
   report::Table pages{"A page per scenario, beside this one", {"scenario", "page"}, {}};
   for (std::size_t i = 0; i < r.scenarios.size(); ++i) {
-    pages.rows.push_back({r.scenarios[i].sweep.name, pageName(i, r.scenarios[i].sweep.name)});
+    pages.rows.push_back({r.scenarios[i].sweep.name, pageName(r.scenarios[i].index, r.scenarios[i].sweep.name)});
   }
   page.addTable(std::move(pages));
   page.addTable(plots::provenanceTable(run));
@@ -240,7 +248,7 @@ std::filesystem::path writeBeyondReport(const BeyondResult& r, const std::filesy
   }
   std::filesystem::create_directories(dir);
   for (std::size_t i = 0; i < r.scenarios.size(); ++i) {
-    scenarioPage(r, r.scenarios[i], run).write(dir / pageName(i, r.scenarios[i].sweep.name));
+    scenarioPage(r, r.scenarios[i], run).write(dir / pageName(r.scenarios[i].index, r.scenarios[i].sweep.name));
   }
   const auto html = dir / "beyond.html";
   indexPage(r, run).write(html);

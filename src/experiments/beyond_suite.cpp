@@ -34,9 +34,10 @@ double timeAtProgress(const traj::SmoothProfile& profile, double s) {
   return 0.5 * (lo + hi);
 }
 
-BeyondScenario describe(const SweepScenario& s) {
+BeyondScenario describe(const SweepScenario& s, std::size_t index) {
   BeyondScenario b;
   b.sweep = s;
+  b.index = index;
   b.last_lap_from_s = kNaN;
   const traj::Trajectory* t = s.trajectory.get();
   if (dynamic_cast<const traj::Landing*>(t) != nullptr) b.kind = BeyondKind::kLanding;
@@ -105,48 +106,12 @@ double seconds(std::chrono::steady_clock::time_point since) {
 
 }  // namespace
 
-int BeyondCell::strikes() const noexcept {
-  return static_cast<int>(std::count_if(flights.begin(), flights.end(),
-                                        [](const BeyondFlight& f) { return f.suite.struck; }));
-}
-
-double BeyondCell::meanFinished(double SuiteFlight::*metric) const noexcept {
-  double sum = 0.0;
-  int n = 0;
-  for (const auto& f : flights) {
-    if (f.suite.struck) continue;
-    sum += f.suite.*metric;
-    ++n;
-  }
-  return n == 0 ? kNaN : sum / n;
-}
-
 const BeyondCell* BeyondResult::cell(const std::string& scenario,
                                      const std::string& controller) const noexcept {
   for (const auto& c : cells) {
-    if (c.scenario == scenario && c.controller == controller) return &c;
+    if (c.scenario() == scenario && c.controller() == controller) return &c;
   }
   return nullptr;
-}
-
-BeyondComparison compareBeyond(const BeyondCell& first, const BeyondCell& second,
-                               double SuiteFlight::*metric) {
-  BeyondComparison c;
-  double a = 0.0, b = 0.0;
-  for (const auto& f : first.flights) {
-    const auto g = std::find_if(second.flights.begin(), second.flights.end(),
-                                [&](const BeyondFlight& x) { return x.suite.seed == f.suite.seed; });
-    if (g == second.flights.end()) continue;
-    if (f.suite.struck && !g->suite.struck) ++c.only_first_struck;
-    if (!f.suite.struck && g->suite.struck) ++c.only_second_struck;
-    if (f.suite.struck || g->suite.struck) continue;
-    a += f.suite.*metric;
-    b += g->suite.*metric;
-    ++c.both_finished;
-  }
-  c.first_rmse_cm = c.both_finished == 0 ? kNaN : a / c.both_finished;
-  c.second_rmse_cm = c.both_finished == 0 ? kNaN : b / c.both_finished;
-  return c;
 }
 
 BeyondResult runBeyond(const SweepSpec& spec, const BeyondOptions& o) {
@@ -158,11 +123,14 @@ BeyondResult runBeyond(const SweepSpec& spec, const BeyondOptions& o) {
   }
   BeyondResult r;
   r.source = spec.source;
+  r.calibrated = spec.calibrate;
+  const control::ControllerParams rec = control::recommendedControllerParams();
+  r.recommended = std::string(control::toString(rec.acceleration)) + ":" + control::toString(rec.torque);
   const auto scenario_idx = pickIndices(spec.scenarios, o.scenarios, "scenario",
                                         [](const SweepScenario& s) { return s.name; });
   const auto controller_idx = pickIndices(spec.controllers, o.controllers, "controller",
                                           [](const SuiteController& c) { return c.name; });
-  for (std::size_t i : scenario_idx) r.scenarios.push_back(describe(spec.scenarios[i]));
+  for (std::size_t i : scenario_idx) r.scenarios.push_back(describe(spec.scenarios[i], i));
   for (std::size_t i : controller_idx) r.controllers.push_back(spec.controllers[i].name);
   for (std::uint64_t k = 0; k < spec.seed_count; ++k) r.seeds.push_back(spec.first_seed + k);
 
@@ -211,17 +179,15 @@ BeyondResult runBeyond(const SweepSpec& spec, const BeyondOptions& o) {
   std::size_t j = 0;
   for (const auto& scn : r.scenarios) {
     for (const auto& ctl : r.controllers) {
-      BeyondCell cell{scn.sweep.name, ctl, {}};
+      BeyondCell cell;
+      cell.suite.case_name = scn.sweep.name;
+      cell.suite.controller = ctl;
       for (std::uint64_t seed : r.seeds) {
         const FlightResult& fr = results[j];
-        BeyondFlight f;
-        f.suite = toSuiteFlight(seed, fr);
-        f.last_lap_rmse_cm = observers[j]->lastLapRmseCm();
-        f.contact = fr.ground_contact;
-        f.min_obstacle_clearance_m = fr.min_obstacle_clearance_m;
+        cell.suite.flights.push_back(toSuiteFlight(seed, fr));
+        cell.extras.push_back({observers[j]->lastLapRmseCm(), fr.ground_contact, fr.min_obstacle_clearance_m});
         if (SeriesCollector* s = observers[j]->series()) r.series[{scn.sweep.name, ctl}] = s->take();
         r.simulated_s += fr.simulated_s;
-        cell.flights.push_back(std::move(f));
         ++j;
       }
       r.cells.push_back(std::move(cell));
@@ -233,68 +199,122 @@ BeyondResult runBeyond(const SweepSpec& spec, const BeyondOptions& o) {
   return r;
 }
 
-// --- The checks ----------------------------------------------------------------------
+// --- The checks ---------------------------------------------------------------------
 
 namespace {
 
+using Verdict = std::optional<std::pair<bool, std::string>>;
+
 std::string ratioText(double v) { return std::isnan(v) ? "-" : fmt::format("{:.2f}×", v); }
+std::string seedsText(int n) { return fmt::format("{} seed{}", n, n == 1 ? "" : "s"); }
 
 /// `recommended` against `other` in one scenario: it passes when it struck on no seed where the
 /// other finished and, on the seeds both finished, its mean all-RMSE is at most `bar` × the
-/// other's. The text says why.
+/// other's; with no such seed, only when the other struck where it finished. The text says why.
 std::pair<bool, std::string> against(const BeyondCell& rec, const BeyondCell& other, double bar) {
-  const BeyondComparison c = compareBeyond(rec, other);
+  const PairedComparison c = comparePaired(rec.suite, other.suite);
+  const double ratio = c.a_rmse_all_cm / c.b_rmse_all_cm;
+  const bool pass = c.atMost(bar) && (c.both_finished > 0 || c.only_b_struck > 0);
   std::string why;
-  bool pass = c.only_first_struck == 0;
-  if (c.both_finished > 0) {
-    pass = pass && c.ratio() <= bar;
-    why = fmt::format("{} on {} seed{}", ratioText(c.ratio()), c.both_finished, c.both_finished == 1 ? "" : "s");
-  }
-  if (c.only_second_struck > 0) {
-    why += fmt::format("{}{} struck on {} seed{} where recommended finished", why.empty() ? "" : "; ",
-                       other.controller, c.only_second_struck, c.only_second_struck == 1 ? "" : "s");
-  }
-  if (c.only_first_struck > 0) {
-    why += fmt::format("{}recommended struck on {} seed{} where {} finished", why.empty() ? "" : "; ",
-                       c.only_first_struck, c.only_first_struck == 1 ? "" : "s", other.controller);
-  }
-  if (why.empty()) why = "no seed to compare";
+  if (c.both_finished > 0) why = fmt::format("{} on {}", ratioText(ratio), seedsText(c.both_finished));
+  const auto add = [&why](const std::string& part) { why += (why.empty() ? "" : "; ") + part; };
+  if (c.only_b_struck > 0) add(fmt::format("{} struck on {} where recommended finished", other.controller(), seedsText(c.only_b_struck)));
+  if (c.only_a_struck > 0) add(fmt::format("recommended struck on {} where {} finished", seedsText(c.only_a_struck), other.controller()));
+  if (c.both_struck > 0) add(fmt::format("both struck on {}", seedsText(c.both_struck)));
+  if (why.empty()) why = "no seed flown by both";
   return {pass, why};
 }
 
-/// One check over the scenarios: passes when every scenario passes; the value lists each.
+/// One check over the scenarios: passes when every scenario it applies to passes, and is left
+/// out (nullopt) when it applies to none of those flown.
 template <class PerScenario>
-SuiteCheck overScenarios(const BeyondResult& r, std::string name, std::string criterion, PerScenario per) {
+std::optional<SuiteCheck> overScenarios(const BeyondResult& r, std::string name, std::string criterion,
+                                        PerScenario per) {
   SuiteCheck chk{std::move(name), std::move(criterion), {}, true};
   int counted = 0;
   for (const auto& scn : r.scenarios) {
-    const auto v = per(scn);
+    const Verdict v = per(scn);
     if (!v) continue;
     ++counted;
     chk.pass = chk.pass && v->first;
     chk.value += fmt::format("{}{} {}{}", chk.value.empty() ? "" : "; ", scn.sweep.name, v->second,
                              v->first ? "" : " (FAIL)");
   }
-  if (counted == 0) {
-    chk.pass = false;
-    chk.value = "not flown (the scenarios or controllers it needs were left out)";
-  }
+  if (counted == 0) return std::nullopt;
   return chk;
+}
+
+Verdict noStrike(const BeyondResult& r, const BeyondScenario& s) {
+  const BeyondCell* rec = r.cell(s.sweep.name, kBeyondRecommended);
+  if (rec == nullptr) return std::nullopt;
+  return std::pair{rec->suite.strikes() == 0, fmt::format("{}/{}", rec->suite.strikes(), rec->suite.flights.size())};
+}
+
+Verdict landing(const BeyondResult& r, const BeyondScenario& s) {
+  const BeyondCell* rec = r.cell(s.sweep.name, kBeyondRecommended);
+  if (s.kind != BeyondKind::kLanding || rec == nullptr) return std::nullopt;
+  double worst_speed = 0.0, worst_bounce = 0.0;
+  int touched = 0;
+  bool pass = true;
+  for (std::size_t i = 0; i < rec->extras.size(); ++i) {
+    const auto& c = rec->extras[i].contact;
+    const bool down = c && c->touched && std::isfinite(c->touchdown_speed_mps) && !rec->suite.flights[i].struck;
+    pass = pass && down && c->touchdown_speed_mps <= 0.15 && c->bounce_m <= 0.01;
+    if (!down) continue;
+    ++touched;
+    worst_speed = std::max(worst_speed, c->touchdown_speed_mps);
+    worst_bounce = std::max(worst_bounce, c->bounce_m);
+  }
+  return std::pair{pass, fmt::format("touched down {}/{}, at ≤ {:.3f} m/s, bounce ≤ {:.1f} mm", touched,
+                                     rec->extras.size(), worst_speed, 1e3 * worst_bounce)};
+}
+
+Verdict takeOff(const BeyondResult& r, const BeyondScenario& s) {
+  const BeyondCell* rec = r.cell(s.sweep.name, kBeyondRecommended);
+  if (s.kind != BeyondKind::kTakeOff || rec == nullptr) return std::nullopt;
+  int lifted = 0, back = 0;
+  double tilt = 0.0;
+  for (std::size_t i = 0; i < rec->extras.size(); ++i) {
+    const auto& c = rec->extras[i].contact;
+    if (!c) continue;
+    lifted += std::isfinite(c->liftoff_t_s) && !rec->suite.flights[i].struck ? 1 : 0;
+    back += c->recontacts;
+    tilt = std::max(tilt, c->max_tilt_on_ground_deg);
+  }
+  return std::pair{lifted == static_cast<int>(rec->extras.size()) && back == 0,
+                   fmt::format("lifted off {}/{}, back down {}, tilt on the ground ≤ {:.1f}°", lifted,
+                               rec->extras.size(), back, tilt)};
+}
+
+/// recommended+learn0 against recommended over the last lap, seed by seed.
+Verdict adaptation(const BeyondResult& r, const BeyondScenario& s) {
+  const BeyondCell* learn = r.cell(s.sweep.name, kBeyondLearning);
+  const BeyondCell* rec = r.cell(s.sweep.name, kBeyondRecommended);
+  if (s.laps < 2 || learn == nullptr || rec == nullptr) return std::nullopt;
+  double a = 0.0, b = 0.0;
+  int n = 0, struck = 0;
+  for (std::size_t i = 0; i < learn->suite.flights.size(); ++i) {
+    const SuiteFlight& x = learn->suite.flights[i];
+    struck += x.struck ? 1 : 0;
+    for (std::size_t k = 0; k < rec->suite.flights.size(); ++k) {
+      const SuiteFlight& y = rec->suite.flights[k];
+      if (y.seed != x.seed || x.struck || y.struck) continue;
+      a += learn->extras[i].last_lap_rmse_cm;
+      b += rec->extras[k].last_lap_rmse_cm;
+      ++n;
+    }
+  }
+  if (n == 0) return std::pair{false, fmt::format("no seed both finished{}", struck ? fmt::format(", {} struck", struck) : "")};
+  const double ratio = a / b;
+  return std::pair{struck == 0 && ratio <= 1.2,
+                   fmt::format("{} ({:.2f} against {:.2f} cm on {}){}", ratioText(ratio), a / n, b / n,
+                               seedsText(n), struck ? fmt::format(", {} struck", struck) : "")};
 }
 
 }  // namespace
 
 std::vector<SuiteCheck> beyondChecks(const BeyondResult& r) {
-  using Verdict = std::optional<std::pair<bool, std::string>>;
-  std::vector<SuiteCheck> checks;
-  checks.push_back(overScenarios(r, "no strike", "recommended strikes on no seed of any scenario",
-                                 [&](const BeyondScenario& s) -> Verdict {
-                                   const BeyondCell* rec = r.cell(s.sweep.name, kBeyondRecommended);
-                                   if (rec == nullptr) return std::nullopt;
-                                   return std::pair{rec->strikes() == 0,
-                                                    fmt::format("{}/{}", rec->strikes(), rec->flights.size())};
-                                 }));
-  const auto versus = [&](const char* other, double bar) {
+  const auto versus = [&r](const char* other, double bar) {
     return [&r, other, bar](const BeyondScenario& s) -> Verdict {
       const BeyondCell* rec = r.cell(s.sweep.name, kBeyondRecommended);
       const BeyondCell* o = r.cell(s.sweep.name, other);
@@ -302,74 +322,31 @@ std::vector<SuiteCheck> beyondChecks(const BeyondResult& r) {
       return against(*rec, *o, bar);
     };
   };
-  checks.push_back(overScenarios(
-      r, "vs the paper's configuration",
-      "all-RMSE of recommended ≤ 0.7× model:model_indi's in every scenario (a struck flight ranks "
-      "below every finished one; RMSE on the seeds both finished)",
-      versus(kBeyondPaper, 0.7)));
-  checks.push_back(overScenarios(r, "vs INDI",
-                                 "all-RMSE of recommended ≤ indi:none's in every scenario (same ranking)",
-                                 versus(kBeyondIndi, 1.0)));
-  checks.push_back(overScenarios(
-      r, "landing", "recommended touches down at ≤ 0.15 m/s with no bounce above 1 cm, every seed",
-      [&](const BeyondScenario& s) -> Verdict {
-        const BeyondCell* rec = r.cell(s.sweep.name, kBeyondRecommended);
-        if (s.kind != BeyondKind::kLanding || rec == nullptr) return std::nullopt;
-        double worst_speed = 0.0, worst_bounce = 0.0;
-        bool pass = true;
-        for (const auto& f : rec->flights) {
-          const bool touched = f.contact && f.contact->touched && std::isfinite(f.contact->touchdown_speed_mps);
-          pass = pass && touched && !f.suite.struck && f.contact->touchdown_speed_mps <= 0.15 &&
-                 f.contact->bounce_m <= 0.01;
-          if (touched) {
-            worst_speed = std::max(worst_speed, f.contact->touchdown_speed_mps);
-            worst_bounce = std::max(worst_bounce, f.contact->bounce_m);
-          }
-        }
-        return std::pair{pass, fmt::format("touchdown ≤ {:.3f} m/s, bounce ≤ {:.1f} mm", worst_speed,
-                                           1e3 * worst_bounce)};
-      }));
-  checks.push_back(overScenarios(
-      r, "take-off", "recommended leaves the ground on every seed, without a strike or a return to the ground",
-      [&](const BeyondScenario& s) -> Verdict {
-        const BeyondCell* rec = r.cell(s.sweep.name, kBeyondRecommended);
-        if (s.kind != BeyondKind::kTakeOff || rec == nullptr) return std::nullopt;
-        int lifted = 0, back = 0;
-        double tilt = 0.0;
-        for (const auto& f : rec->flights) {
-          if (!f.contact) continue;
-          lifted += std::isfinite(f.contact->liftoff_t_s) && !f.suite.struck ? 1 : 0;
-          back += f.contact->recontacts;
-          tilt = std::max(tilt, f.contact->max_tilt_on_ground_deg);
-        }
-        const bool pass = lifted == static_cast<int>(rec->flights.size()) && back == 0;
-        return std::pair{pass, fmt::format("lifted off {}/{}, back down {}, tilt on the ground ≤ {:.1f}°", lifted,
-                                           rec->flights.size(), back, tilt)};
-      }));
-  checks.push_back(overScenarios(
-      r, "adaptation from no model",
-      "last-lap all-RMSE of recommended+learn0 ≤ 1.2× recommended's (the vehicle file's F_G), on the "
-      "seeds both finished, in every scenario of two or more laps",
-      [&](const BeyondScenario& s) -> Verdict {
-        const BeyondCell* learn = r.cell(s.sweep.name, kBeyondLearning);
-        const BeyondCell* rec = r.cell(s.sweep.name, kBeyondRecommended);
-        if (s.laps < 2 || learn == nullptr || rec == nullptr) return std::nullopt;
-        double a = 0.0, b = 0.0;
-        int n = 0, struck = 0;
-        for (std::size_t i = 0; i < learn->flights.size() && i < rec->flights.size(); ++i) {
-          const BeyondFlight& x = learn->flights[i];
-          const BeyondFlight& y = rec->flights[i];
-          struck += x.suite.struck ? 1 : 0;
-          if (x.suite.struck || y.suite.struck) continue;
-          a += x.last_lap_rmse_cm;
-          b += y.last_lap_rmse_cm;
-          ++n;
-        }
-        const double ratio = n == 0 ? kNaN : a / b;
-        return std::pair{struck == 0 && n > 0 && ratio <= 1.2,
-                         fmt::format("{} ({:.2f} against {:.2f} cm on {} seeds){}", ratioText(ratio), a / n,
-                                     b / n, n, struck ? fmt::format(", {} struck", struck) : "")};
-      }));
+  const auto with = [&r](Verdict (*f)(const BeyondResult&, const BeyondScenario&)) {
+    return [&r, f](const BeyondScenario& s) { return f(r, s); };
+  };
+  std::vector<SuiteCheck> checks;
+  for (auto c : {overScenarios(r, "no strike", "recommended strikes on no seed of any scenario", with(noStrike)),
+                 overScenarios(r, "vs the paper's configuration",
+                               "all-RMSE of recommended ≤ 0.7× model:model_indi's in every scenario (a struck "
+                               "flight ranks below every finished one; RMSE on the seeds both finished)",
+                               versus(kBeyondPaper, 0.7)),
+                 overScenarios(r, "vs INDI", "all-RMSE of recommended ≤ indi:none's in every scenario (same ranking)",
+                               versus(kBeyondIndi, 1.0)),
+                 overScenarios(r, "landing",
+                               "recommended touches down on every seed at ≤ 0.15 m/s with no bounce above 1 cm",
+                               with(landing)),
+                 overScenarios(r, "take-off",
+                               "recommended leaves the ground on every seed without a strike (a tip-over strikes a "
+                               "rotor) and without coming back down; the tilt on the ground is reported",
+                               with(takeOff)),
+                 overScenarios(r, "adaptation from no model",
+                               "last-lap all-RMSE of recommended+learn0 ≤ 1.2× recommended's (the "
+                               "platform-identified F_G), on the seeds both finished, in every scenario of two "
+                               "or more laps",
+                               with(adaptation))}) {
+    if (c) checks.push_back(std::move(*c));
+  }
   return checks;
 }
 

@@ -28,6 +28,21 @@ const char* kindName(BeyondKind k) {
 
 const char* plural(std::size_t n) { return n == 1 ? "" : "s"; }
 
+}  // namespace
+
+double meanLastLapCm(const BeyondCell& c) noexcept {
+  double sum = 0.0;
+  int n = 0;
+  for (std::size_t i = 0; i < c.extras.size(); ++i) {
+    if (c.suite.flights[i].struck) continue;
+    sum += c.extras[i].last_lap_rmse_cm;
+    ++n;
+  }
+  return n == 0 ? kNaN : sum / n;
+}
+
+namespace {
+
 std::string span(double lo, double hi, const char* unit) {
   if (!std::isfinite(lo)) return "-";
   return lo == hi ? fmt::format("{:.3f} {}", lo, unit) : fmt::format("{:.3f}–{:.3f} {}", lo, hi, unit);
@@ -36,49 +51,40 @@ std::string span(double lo, double hi, const char* unit) {
 /// What a cell adds to its line: touchdown, lift-off, clearance, last lap.
 std::string extras(const BeyondScenario& scn, const BeyondCell& c) {
   std::string s;
+  const std::size_t n = c.extras.size();
   if (scn.kind == BeyondKind::kLanding) {
     double lo = kNaN, hi = kNaN, bounce = 0.0;
     int landed = 0;
-    for (const auto& f : c.flights) {
-      if (!f.contact) continue;
-      landed += f.contact->landed ? 1 : 0;
-      const double v = f.contact->touchdown_speed_mps;
+    for (const auto& x : c.extras) {
+      if (!x.contact) continue;
+      landed += x.contact->landed ? 1 : 0;
+      const double v = x.contact->touchdown_speed_mps;
       if (!std::isfinite(v)) continue;
-      lo = std::isfinite(lo) ? std::min(lo, v) : v;
-      hi = std::isfinite(hi) ? std::max(hi, v) : v;
-      bounce = std::max(bounce, f.contact->bounce_m);
+      lo = std::fmin(lo, v);
+      hi = std::fmax(hi, v);
+      bounce = std::max(bounce, x.contact->bounce_m);
     }
-    s += fmt::format("  touchdown {}, bounce ≤ {:.1f} mm, landed {}/{}", span(lo, hi, "m/s"), 1e3 * bounce,
-                     landed, c.flights.size());
+    s += fmt::format("  touchdown {}, bounce ≤ {:.1f} mm, landed {}/{}", span(lo, hi, "m/s"), 1e3 * bounce, landed, n);
   }
   if (scn.kind == BeyondKind::kTakeOff) {
     int lifted = 0, back = 0;
     double tilt = 0.0;
-    for (const auto& f : c.flights) {
-      if (!f.contact) continue;
-      lifted += std::isfinite(f.contact->liftoff_t_s) ? 1 : 0;
-      back += f.contact->recontacts;
-      tilt = std::max(tilt, f.contact->max_tilt_on_ground_deg);
+    for (const auto& x : c.extras) {
+      if (!x.contact) continue;
+      lifted += std::isfinite(x.contact->liftoff_t_s) ? 1 : 0;
+      back += x.contact->recontacts;
+      tilt = std::max(tilt, x.contact->max_tilt_on_ground_deg);
     }
-    s += fmt::format("  lifted off {}/{}, back down {}, tilt ≤ {:.1f}°", lifted, c.flights.size(), back, tilt);
+    s += fmt::format("  lifted off {}/{}, back down {}, tilt ≤ {:.1f}°", lifted, n, back, tilt);
   }
   double clearance = kNaN;
-  for (const auto& f : c.flights) {
-    if (f.min_obstacle_clearance_m) {
-      clearance = std::isfinite(clearance) ? std::min(clearance, *f.min_obstacle_clearance_m)
-                                           : *f.min_obstacle_clearance_m;
-    }
+  for (const auto& x : c.extras) {
+    if (x.min_obstacle_clearance_m) clearance = std::fmin(clearance, *x.min_obstacle_clearance_m);
   }
   if (std::isfinite(clearance)) s += fmt::format("  closest rim {:.1f} cm", 100.0 * clearance);
   if (scn.laps >= 2) {
-    double sum = 0.0;
-    int n = 0;
-    for (const auto& f : c.flights) {
-      if (f.suite.struck) continue;
-      sum += f.last_lap_rmse_cm;
-      ++n;
-    }
-    s += n == 0 ? "  last lap -" : fmt::format("  last lap {:.2f} cm", sum / n);
+    const double lap = meanLastLapCm(c);
+    s += std::isnan(lap) ? "  last lap -" : fmt::format("  last lap {:.2f} cm", lap);
   }
   return s;
 }
@@ -88,10 +94,12 @@ std::string extras(const BeyondScenario& scn, const BeyondCell& c) {
 std::string formatBeyond(const BeyondResult& r) {
   std::string s = fmt::format(
       "Beyond suite ({}): {} scenario{} × {} controller{} × {} seed{} = {} flights, as the sweep "
-      "flies them (the belief calibrated once in the unperturbed world).\n"
+      "flies them ({}). recommended = {} + additions.\n"
       "Each line: strikes, the mean all-RMSE and max of the finished flights [cm].\n",
       r.source, r.scenarios.size(), plural(r.scenarios.size()), r.controllers.size(),
-      plural(r.controllers.size()), r.seeds.size(), plural(r.seeds.size()), r.flights);
+      plural(r.controllers.size()), r.seeds.size(), plural(r.seeds.size()), r.flights,
+      r.calibrated ? "the belief calibrated once in the unperturbed world" : "the belief as the vehicle file gives it",
+      r.recommended);
   std::size_t width = 0;
   for (const auto& c : r.controllers) width = std::max(width, c.size());
   for (const auto& scn : r.scenarios) {
@@ -99,10 +107,10 @@ std::string formatBeyond(const BeyondResult& r) {
     for (const auto& ctl : r.controllers) {
       const BeyondCell* c = r.cell(scn.sweep.name, ctl);
       if (c == nullptr) continue;
-      const double rmse = c->meanFinished(&SuiteFlight::rmse_all_cm);
-      const double max = c->meanFinished(&SuiteFlight::max_cm);
-      s += fmt::format("  {:<{}}  strikes {}/{}  all-RMSE {}  max {}{}\n", ctl, width, c->strikes(),
-                       c->flights.size(), std::isnan(rmse) ? "     -" : fmt::format("{:6.2f}", rmse),
+      const double rmse = c->suite.meanFinished(&SuiteFlight::rmse_all_cm);
+      const double max = c->suite.meanFinished(&SuiteFlight::max_cm);
+      s += fmt::format("  {:<{}}  strikes {}/{}  all-RMSE {}  max {}{}\n", ctl, width, c->suite.strikes(),
+                       c->suite.flights.size(), std::isnan(rmse) ? "     -" : fmt::format("{:6.2f}", rmse),
                        std::isnan(max) ? "     -" : fmt::format("{:6.2f}", max), extras(scn, *c));
     }
   }
@@ -121,8 +129,8 @@ io::Json beyondJson(const BeyondResult& r) {
   io::Json doc = {{"geaware_version", io::geawareVersion()},
                   {"suite", "beyond"},
                   {"sweep", r.source},
-                  {"seeds", r.seeds},
-                  {"controllers", r.controllers}};
+                  {"recommended", r.recommended},
+                  {"seeds", r.seeds}};
   io::Json scenarios = io::Json::array();
   for (const auto& scn : r.scenarios) {
     scenarios.push_back({{"case", scn.sweep.name},
@@ -133,55 +141,35 @@ io::Json beyondJson(const BeyondResult& r) {
                          {"obstacles", scn.sweep.obstacles ? scn.sweep.obstacles->boxes().size() : std::size_t{0}}});
   }
   doc["cases"] = std::move(scenarios);
+  doc["controllers"] = r.controllers;
   io::Json cells = io::Json::array();
   for (const auto& scn : r.scenarios) {
     for (const auto& ctl : r.controllers) {
       const BeyondCell* c = r.cell(scn.sweep.name, ctl);
       if (c == nullptr) continue;
-      io::Json seeds = io::Json::array();
-      io::Json per_seed = io::Json::array();
+      // The shared schema's cell (height and speed 0: the scenario sets them), then what the
+      // scenario adds, per seed and for landings as the finished flights' means.
+      io::Json j = suiteCellJson(c->suite);
       double td_sum = 0.0, bounce_sum = 0.0;
       int touched = 0;
-      for (const auto& f : c->flights) {
-        seeds.push_back(f.suite.seed);
-        io::Json one = {{"seed", f.suite.seed},
-                        {"struck", f.suite.struck},
-                        {"strike_t_s", f.suite.struck ? f.suite.strike_t_s : kNaN},
-                        {"rmse_all_cm", f.suite.rmse_all_cm},
-                        {"rmse_xy_cm", f.suite.rmse_xy_cm},
-                        {"rmse_z_cm", f.suite.rmse_z_cm},
-                        {"max_cm", f.suite.max_cm}};
-        if (scn.laps >= 2) one["last_lap_rmse_cm"] = f.last_lap_rmse_cm;
-        if (f.min_obstacle_clearance_m) one["min_obstacle_clearance_m"] = *f.min_obstacle_clearance_m;
-        if (f.contact) {
-          one.update(touchdownJson(*f.contact));
-          one["landed"] = f.contact->landed;
-          one["liftoff_t_s"] = f.contact->liftoff_t_s;
-          one["recontacts"] = f.contact->recontacts;
-          one["max_tilt_on_ground_deg"] = f.contact->max_tilt_on_ground_deg;
-          if (std::isfinite(f.contact->touchdown_speed_mps)) {
-            td_sum += f.contact->touchdown_speed_mps;
-            bounce_sum += f.contact->bounce_m;
-            ++touched;
-          }
+      for (std::size_t i = 0; i < c->extras.size(); ++i) {
+        const BeyondExtras& x = c->extras[i];
+        io::Json& one = j["per_seed"][i];
+        if (scn.laps >= 2) one["last_lap_rmse_cm"] = x.last_lap_rmse_cm;
+        if (x.min_obstacle_clearance_m) one["min_obstacle_clearance_m"] = *x.min_obstacle_clearance_m;
+        if (!x.contact) continue;
+        one.update(groundContactJson(*x.contact));
+        if (std::isfinite(x.contact->touchdown_speed_mps) && !c->suite.flights[i].struck) {
+          td_sum += x.contact->touchdown_speed_mps;
+          bounce_sum += x.contact->bounce_m;
+          ++touched;
         }
-        per_seed.push_back(std::move(one));
       }
-      io::Json j = {{"case", c->scenario},
-                    {"controller", c->controller},
-                    {"seeds", std::move(seeds)},
-                    {"flights", c->flights.size()},
-                    {"strikes", c->strikes()},
-                    {"rmse_all_cm", c->meanFinished(&SuiteFlight::rmse_all_cm)},
-                    {"rmse_xy_cm", c->meanFinished(&SuiteFlight::rmse_xy_cm)},
-                    {"rmse_z_cm", c->meanFinished(&SuiteFlight::rmse_z_cm)},
-                    {"max_cm", c->meanFinished(&SuiteFlight::max_cm)}};
+      if (scn.laps >= 2) j["last_lap_rmse_cm"] = meanLastLapCm(*c);
       if (scn.kind == BeyondKind::kLanding) {
-        // Means over the flights that touched down.
         j["touchdown_speed_mps"] = touched ? td_sum / touched : kNaN;
         j["bounce_m"] = touched ? bounce_sum / touched : kNaN;
       }
-      j["per_seed"] = std::move(per_seed);
       cells.push_back(std::move(j));
     }
   }

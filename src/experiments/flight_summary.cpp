@@ -101,6 +101,15 @@ io::Json touchdownJson(const GroundContactSummary& g) {
           {"bounce_m", std::isnan(g.touchdown_t_s) ? std::nan("") : g.bounce_m}};
 }
 
+io::Json groundContactJson(const GroundContactSummary& g) {
+  io::Json j = touchdownJson(g);
+  j["landed"] = g.landed;
+  j["liftoff_t_s"] = g.liftoff_t_s;
+  j["recontacts"] = g.recontacts;
+  j["max_tilt_on_ground_deg"] = g.max_tilt_on_ground_deg;
+  return j;
+}
+
 std::filesystem::path writeFlightReport(const std::filesystem::path& dir, const FlightSeries& series,
                                         const FlightResult& r, const std::string& title,
                                         const io::RunInfo& run, bool png) {

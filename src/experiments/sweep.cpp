@@ -293,11 +293,7 @@ std::string sweepRecord(const SweepSpec& spec, const SweepKey& k, const FlightRe
   if (r.min_obstacle_clearance_m) j["min_obstacle_clearance_m"] = *r.min_obstacle_clearance_m;
   if (const auto& g = r.ground_contact) {
     // Landings and take-offs (flights with ground contact) only: other records keep their bytes.
-    j.update(touchdownJson(*g));
-    j["landed"] = g->landed;
-    j["liftoff_t_s"] = g->liftoff_t_s;
-    j["recontacts"] = g->recontacts;
-    j["max_tilt_on_ground_deg"] = g->max_tilt_on_ground_deg;
+    j.update(groundContactJson(*g));
   }
   // Compact, NaN as null, invalid UTF-8 replaced: one line, the same bytes everywhere.
   return j.dump(-1, ' ', false, io::Json::error_handler_t::replace);

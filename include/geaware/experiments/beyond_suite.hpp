@@ -28,49 +28,34 @@ namespace geaware::experiments {
 /// What kind of flight a scenario is, from its trajectory.
 enum class BeyondKind : std::uint8_t { kFlight, kLanding, kTakeOff };
 
-/// One flight of a beyond cell: the suite metrics plus what its kind adds.
-struct BeyondFlight {
-  SuiteFlight suite;
-  /// All-RMSE over the last lap of a lemniscate of two or more laps (NaN otherwise, or struck
-  /// before it) [cm].
+/// What a beyond flight adds to its suite flight.
+struct BeyondExtras {
+  /// All-RMSE over the last lap of a lemniscate of two or more laps (NaN otherwise, or when the
+  /// flight struck before it) [cm].
   double last_lap_rmse_cm = 0.0;
-  std::optional<GroundContactSummary> contact;  ///< landings and take-offs
+  std::optional<GroundContactSummary> contact;     ///< landings and take-offs
   std::optional<double> min_obstacle_clearance_m;  ///< scenarios with obstacles [m]
 };
 
+/// One scenario × controller: a cell of the shared suite schema ("case" the scenario; height and
+/// speed 0) and, per flight, what the scenario adds.
 struct BeyondCell {
-  std::string scenario;
-  std::string controller;
-  std::vector<BeyondFlight> flights;  ///< in seed order
+  SuiteCell suite;
+  std::vector<BeyondExtras> extras;  ///< aligned with suite.flights (seed order)
 
-  [[nodiscard]] int strikes() const noexcept;
-  /// Mean of `metric` over the finished flights; NaN when every flight struck [cm].
-  [[nodiscard]] double meanFinished(double SuiteFlight::*metric) const noexcept;
+  [[nodiscard]] const std::string& scenario() const noexcept { return suite.case_name; }
+  [[nodiscard]] const std::string& controller() const noexcept { return suite.controller; }
 };
 
 /// A scenario of the suite: its sweep entry (trajectory, terrain, obstacles) and kind.
 struct BeyondScenario {
   SweepScenario sweep;
+  std::size_t index = 0;  ///< its position in the sweep file (names its report page)
   BeyondKind kind = BeyondKind::kFlight;
   int laps = 0;  ///< laps of a lemniscate (0: another trajectory)
   /// Trajectory time at which its last lap starts (lemniscates of ≥ 2 laps; NaN otherwise) [s].
   double last_lap_from_s = 0.0;
 };
-
-/// Two controllers' flights of one scenario, seed by seed: a struck flight ranks below every
-/// finished one, and the RMSE is compared on the seeds both finished.
-struct BeyondComparison {
-  int both_finished = 0;
-  int only_first_struck = 0;   ///< seeds where the first struck and the second finished
-  int only_second_struck = 0;  ///< seeds where the second struck and the first finished
-  double first_rmse_cm = 0.0;  ///< mean over the seeds both finished (NaN: none) [cm]
-  double second_rmse_cm = 0.0;
-  /// first / second on those seeds (NaN: none).
-  [[nodiscard]] double ratio() const noexcept { return first_rmse_cm / second_rmse_cm; }
-};
-
-[[nodiscard]] BeyondComparison compareBeyond(const BeyondCell& first, const BeyondCell& second,
-                                             double SuiteFlight::*metric = &SuiteFlight::rmse_all_cm);
 
 struct BeyondOptions {
   /// The scenarios to fly, by name (empty: all of the spec's), and the controllers (empty: all).
@@ -83,6 +68,8 @@ struct BeyondOptions {
 
 struct BeyondResult {
   std::string source;  ///< the sweep file
+  bool calibrated = true;  ///< the belief was calibrated (the file's `calibrate`)
+  std::string recommended;  ///< the ACC:TORQUE pair `recommended` stands for
   std::vector<BeyondScenario> scenarios;
   std::vector<std::string> controllers;
   std::vector<std::uint64_t> seeds;
@@ -106,20 +93,26 @@ inline constexpr const char* kBeyondIndi = "indi:none";
 inline constexpr const char* kBeyondRecommended = "recommended";
 inline constexpr const char* kBeyondLearning = "recommended+learn0";
 
-/// Flies the suite: every scenario × controller × seed of `spec` (one case: the sweep's first,
-/// normally `none`). Throws std::invalid_argument for an unknown scenario or controller name,
+/// Flies the suite: every scenario × controller × seed of `spec`, which has one case (normally
+/// `none`). Throws std::invalid_argument for an unknown or twice-named scenario or controller,
 /// a spec with more than one case, and whatever a flight throws.
 [[nodiscard]] BeyondResult runBeyond(const SweepSpec& spec, const BeyondOptions& options);
 
-/// The checks of `recommended` on `r` (runBeyond fills r.checks with them).
+/// The checks of `recommended` on `r`, those its scenarios and controllers allow (a check
+/// that needs a controller or a kind of scenario that was not flown is left out); runBeyond
+/// fills r.checks with them. A struck flight ranks below every finished one; RMSEs are compared
+/// on the seeds both controllers finished.
 [[nodiscard]] std::vector<SuiteCheck> beyondChecks(const BeyondResult& r);
+
+/// Mean last-lap all-RMSE of the cell's finished flights (NaN: none, or no last lap) [cm].
+[[nodiscard]] double meanLastLapCm(const BeyondCell& c) noexcept;
 
 /// The human summary: a table per scenario, the checks, the timing.
 [[nodiscard]] std::string formatBeyond(const BeyondResult& r);
 /// The suite's JSON ("suite": "beyond", one cell per scenario × controller, "case" the scenario).
 [[nodiscard]] io::Json beyondJson(const BeyondResult& r);
-/// Writes DIR/beyond.html (the checks and every cell) and DIR/beyond-<scenario>.html per
-/// scenario (its geometry seen from the side and from above with the first seed of each
+/// Writes DIR/beyond.html (the checks and every cell) and DIR/beyond-NN-<scenario>.html per
+/// scenario (NN its position in the sweep file) (its geometry seen from the side and from above with the first seed of each
 /// controller, heights and errors over time); with `png`, DIR/beyond.png too. Returns the
 /// index page's path.
 std::filesystem::path writeBeyondReport(const BeyondResult& r, const std::filesystem::path& dir,

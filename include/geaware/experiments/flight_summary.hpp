@@ -29,6 +29,9 @@ namespace geaware::experiments {
 /// A landing's touchdown as `fly --json` and sweep records write it: "touchdown_speed_mps" and
 /// "bounce_m" (NaN, written as null, without a touchdown).
 [[nodiscard]] io::Json touchdownJson(const GroundContactSummary& g);
+/// A landing's or take-off's ground contact as sweep records and the beyond suite write it:
+/// touchdownJson's, then "landed", "liftoff_t_s", "recontacts", "max_tilt_on_ground_deg".
+[[nodiscard]] io::Json groundContactJson(const GroundContactSummary& g);
 
 /// Writes DIR/flight.html (creating DIR) from the flight's series and returns its path: the
 /// metrics, the provenance, the trajectory from above (equal aspect), the height over the
