@@ -230,11 +230,9 @@ report::Page indexPage(const BeyondResult& r, const io::RunInfo& run) {
   std::vector<const BeyondScenario*> all;
   for (const auto& s : r.scenarios) all.push_back(&s);
   page.addTable(cellTable(r, all));
-  report::Table pages{"A page per scenario, beside this one", {"scenario", "page"}, {}};
-  for (std::size_t i = 0; i < r.scenarios.size(); ++i) {
-    pages.rows.push_back({r.scenarios[i].sweep.name, pageName(r.scenarios[i].index, r.scenarios[i].sweep.name)});
-  }
-  page.addTable(std::move(pages));
+  std::vector<std::pair<std::string, std::string>> pages;
+  for (const auto& scn : r.scenarios) pages.emplace_back(scn.sweep.name, pageName(scn.index, scn.sweep.name));
+  page.addLinks("A page per scenario, beside this one", std::move(pages));
   page.addTable(plots::provenanceTable(run));
   return page;
 }

@@ -192,6 +192,21 @@ void Page::addText(std::string text) { blocks_.emplace_back(Text{std::move(text)
 
 void Page::addHeading(std::string text) { blocks_.emplace_back(Heading{std::move(text)}); }
 
+void Page::addLinks(std::string title, std::vector<std::pair<std::string, std::string>> label_and_file) {
+  for (const auto& [label, file] : label_and_file) {
+    const bool plain = !file.empty() && file.front() != '.' &&
+                       std::all_of(file.begin(), file.end(), [](char ch) {
+                         return (ch >= 'A' && ch <= 'Z') || (ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') ||
+                                ch == '.' || ch == '_' || ch == '+' || ch == '-';
+                       });
+    if (!plain) {
+      throw std::invalid_argument("report::Page: links '" + title + "': '" + file +
+                                  "' is not a file name beside the page (A-Z a-z 0-9 . _ + -, not starting with '.')");
+    }
+  }
+  blocks_.emplace_back(Links{std::move(title), std::move(label_and_file)});
+}
+
 void Page::addTable(Table table) {
   for (std::size_t r = 0; r < table.rows.size(); ++r) {
     if (!table.header.empty() && table.rows[r].size() != table.header.size()) {
@@ -278,6 +293,14 @@ std::string Page::html(const std::string& plotly_js) const {
             body += "<h2>" + escapeHtml(b.text) + "</h2>\n";
           } else if constexpr (std::is_same_v<B, Table>) {
             body += tableHtml(b);
+          } else if constexpr (std::is_same_v<B, Links>) {
+            // The file names were checked by addLinks: plain names beside this page.
+            body += "<section class=\"links\">\n<h3>" + escapeHtml(b.title) + "</h3>\n<ul>\n";
+            for (const auto& [label, file] : b.items) {
+              body += "<li><a href=\"" + escapeHtml(file) + "\">" + escapeHtml(label) + "</a> (" +
+                      escapeHtml(file) + ")</li>\n";
+            }
+            body += "</ul>\n</section>\n";
           } else {
             const std::string id = "geaware-plot-" + std::to_string(plot_count);
             body += "<figure class=\"plot\"><div class=\"plot-area\" id=\"" + id +

@@ -337,3 +337,16 @@ TEST(ReportPage, HeatMapCellsRoundTripRowsTopToBottom) {
         << e.what();
   }
 }
+// Links go to pages beside this one only: the names are checked, the labels escaped.
+TEST(ReportPage, LinksPointBesideThePageOnly) {
+  geaware::report::Page page("suite");
+  page.addLinks("Pages", {{"ceiling <15 cm>", "beyond-04-ceiling-15cm.html"}});
+  const std::string html = page.html(kFakeLibrary);
+  EXPECT_NE(html.find("<li><a href=\"beyond-04-ceiling-15cm.html\">ceiling &lt;15 cm&gt;</a>"), std::string::npos);
+  for (const std::string bad : {"", ".hidden.html", "../up.html", "dir/page.html", "javascript:alert(1)",
+                                "https://example.org/x.html", "a b.html", "a\"b.html"}) {
+    geaware::report::Page p("suite");
+    EXPECT_THROW(p.addLinks("Pages", {{"x", bad}}), std::invalid_argument) << bad;
+  }
+}
+

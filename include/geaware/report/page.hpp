@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -77,6 +78,11 @@ class Page {
   /// Throws std::invalid_argument naming the heat map when z or text does not have one row per
   /// label and one value per column, or height_px is out of range.
   void addHeatMap(HeatMap map);
+  /// A list of links to pages written beside this one (a suite's page per scenario): each a
+  /// label (escaped) and a file name in the same directory. Throws std::invalid_argument naming
+  /// the file when it is not a plain file name (empty, starting with '.', or holding anything but
+  /// A–Z a–z 0–9 . _ + -): a page links to nothing elsewhere.
+  void addLinks(std::string title, std::vector<std::pair<std::string, std::string>> label_and_file);
 
   /// Writes one self-contained HTML file (plotting library inlined). Throws std::runtime_error
   /// naming the file when it cannot be written, and naming the plotly.js path when the library
@@ -97,7 +103,11 @@ class Page {
   struct Heading {
     std::string text;
   };
-  using Block = std::variant<Text, Heading, Table, Plot, HeatMap>;
+  struct Links {
+    std::string title;
+    std::vector<std::pair<std::string, std::string>> items;  ///< label, file beside the page
+  };
+  using Block = std::variant<Text, Heading, Table, Plot, HeatMap, Links>;
 
   std::string title_;
   std::vector<Block> blocks_;
