@@ -186,11 +186,28 @@ Controller::Measured Controller::measure(const ControllerInput& in,
   return m;
 }
 
+namespace {
+/// Within this of the landing gear's rotor-plane height, the feet may carry the vehicle [m]
+/// (the F_G learner's kLearnAboveGearM).
+constexpr double kFeetMayCarryM = 0.01;
+}  // namespace
+
 Eigen::Vector3d Controller::disturbanceResidual(const ControllerInput& in, double thrust_ref_N,
                                                 const Eigen::Matrix3d& R,
                                                 const Eigen::Vector3d& a_shape_W,
                                                 const Eigen::Vector3d& a_prox_W) noexcept {
   if (!(params_.dob_time_constant_s > 0.0)) return Eigen::Vector3d::Zero();
+  // Standing on the gear before a take-off, the feet carry part of the weight: the observer
+  // reads the ground's reaction as an upward disturbance, and feeding it forward would take
+  // thrust away until the lift-off. Nothing is fed forward until a valid height more than a
+  // centimetre above the gear's (the F_G learner's rule) says the vehicle is airborne; then the
+  // filter starts afresh. A flight that starts in the air is airborne from its first reading;
+  // without a valid height (out of range, no ranger) nothing withholds the feed-forward.
+  if (in.height_valid) {
+    const bool on_gear = in.height_m <= min_rotor_plane_height_m_ + kFeetMayCarryM;
+    if (!on_gear) mem_.been_airborne_ = true;
+    if (on_gear && !mem_.been_airborne_) return Eigen::Vector3d::Zero();
+  }
   if (in.external_accel_valid && model::allFinite(in.external_accel_W)) {
     // What the model already accounts for in ã_ext: at the measured height, the extra thrust
     // F_G(h)·T_ref/m along z_B (with the feed-forward's thrust: a thrust or mass error times F_G

@@ -72,6 +72,39 @@ TEST(ControllerDisturbanceFeedForward, ConvergesToAConstantDisturbanceWithItsTim
   EXPECT_MATRIX_NEAR(held.a_dob_W, d * (1.0 - std::pow(rho, 200)), 1e-5);
 }
 
+// Standing on the gear, the feet carry part of the weight and the observer reads the ground's
+// reaction as an upward disturbance: nothing is fed forward until a valid height more than 1 cm
+// above the gear's says the vehicle is airborne; from then on, also back down on the gear (a
+// landing keeps its feed-forward), the filter runs from its first airborne input.
+TEST(ControllerDisturbanceFeedForward, WaitsForTheLiftOffAndThenStaysOn) {
+  ControllerParams p = only(AccelerationCompensation::kModel);
+  p.dob_time_constant_s = 0.1;
+  Controller c(paperVehicle(), p);
+  const double gear = paperVehicle().params().min_rotor_plane_height_m;
+  const Eigen::Vector3d d(0.0, 0.0, 2.0);  // the ground pushing up
+  ControllerInput in = hoverInput(gear);
+  in.external_accel_valid = true;
+  in.external_accel_W = d;
+  for (double h : {gear, gear + 0.005, gear + 0.0099}) {
+    in.height_m = h;
+    in.reference.p_W.z() = in.estimate.p_W.z() = h;
+    for (int k = 0; k < 20; ++k) ASSERT_EQ(c.update(in).a_dob_W, Eigen::Vector3d::Zero()) << "h " << h;
+  }
+  in.height_m = gear + 0.05;  // airborne: the filter starts at its first input
+  in.external_accel_W = Eigen::Vector3d(0.1, 0.0, 0.0);
+  EXPECT_GT(c.update(in).a_dob_W.x(), 0.09);
+  in.height_m = gear;  // back on the gear (a landing): still fed forward
+  EXPECT_GT(c.update(in).a_dob_W.x(), 0.09);
+  // A reset (a new flight) waits for the lift-off again.
+  c.reset();
+  EXPECT_EQ(c.update(in).a_dob_W, Eigen::Vector3d::Zero());
+  // Only a valid height near the gear's withholds it: without a ranger height (out of range,
+  // high up) the feed-forward works as ever.
+  Controller high(paperVehicle(), p);
+  in.height_valid = false;
+  EXPECT_GT(high.update(in).a_dob_W.x(), 0.09);
+}
+
 TEST(ControllerDisturbanceFeedForward, FeedsForwardOnlyWhatTheModelDoesNotExplain) {
   // At 0.12 m the observer sees the ground's extra thrust F_G·T/m; the model explains it, so the
   // residual is zero and the command is the paper's.

@@ -327,6 +327,9 @@ class Controller {
     // tick's flags (anti-windup).
     Eigen::Vector3d dob_residual_mps2_ = Eigen::Vector3d::Zero();
     bool have_dob_residual_ = false;
+    /// A valid height has been read more than a centimetre above the gear's height since the
+    /// last reset: the feet no longer carry the vehicle (a take-off has lifted off).
+    bool been_airborne_ = false;
     Eigen::Vector3d position_integral_ms_ = Eigen::Vector3d::Zero();  // ∫e_p dt [m·s]
     std::uint32_t last_flags_ = kFlagNone;
     // The motor monitor: the last rotor-speed command, how long each rotor has lagged it by
