@@ -165,21 +165,38 @@ void checkFiles(const FlyOptions& o) {
 }
 
 /// --learned-vehicle: the flight's vehicle file (or the built-in one) with F_G replaced by the
-/// table the controller learned, every other value and comment kept (io::writeVehicleFile).
-void writeLearnedVehicle(const FlyOptions& o, const experiments::FlightResult& r, const io::RunInfo& run) {
+/// table the controller learned and, once excited enough to be learned, the leveling torque
+/// scaled by the scale learned; every other value and comment kept (io::writeVehicleFile).
+void writeLearnedVehicle(const FlyOptions& o, const experiments::FlightScenario& s,
+                         const experiments::FlightResult& r, const io::RunInfo& run) {
   if (o.learned_vehicle.empty() || !r.learned_ground_effect) return;
   const experiments::LearnedGroundEffect& g = *r.learned_ground_effect;
   io::VehicleUpdate update;
   update.setTable("ground_effect.additional_thrust", g.heights_m, g.f_g);
-  update.provenance = fmt::format("a flight learning F_G (geaware fly, {} samples, seed {})",
+  if (g.leveling_learned) {
+    const model::HeightTableParams& table = s.vehicle.leveling_torque.table;
+    if (table.empty()) {
+      update.set("ground_effect.leveling_torque.scale_m4", g.leveling_scale * s.vehicle.leveling_torque.scale_m4);
+    } else {
+      std::vector<double> values = table.values;
+      for (double& v : values) v *= g.leveling_scale;
+      update.setTable("ground_effect.leveling_torque", table.heights_m, std::move(values));
+    }
+  }
+  update.provenance = fmt::format("a flight learning F_G and the leveling scale (geaware fly, {} samples, seed {})",
                                   g.samples, run.seeds.empty() ? 0 : run.seeds.front());
   if (o.vehicle.empty()) {
     (void)io::writeVehicleFile(io::builtinVehicleYaml(), "built-in vehicle", o.learned_vehicle, update);
   } else {
     (void)io::writeVehicleFile(o.vehicle, o.learned_vehicle, update);
   }
-  std::cerr << "geaware: wrote the learned F_G (" << g.heights_m.size() << " knots) into "
-            << o.learned_vehicle << "\n";
+  std::cerr << fmt::format("geaware: wrote the learned F_G ({} knots) into {}; the leveling torque {}\n",
+                           g.heights_m.size(), o.learned_vehicle,
+                           g.leveling_learned
+                               ? fmt::format("scaled by {:.4g} (learned from {} samples)", g.leveling_scale,
+                                             g.leveling_samples)
+                               : fmt::format("as the file's (its scale was not excited enough to learn: {} samples)",
+                                             g.leveling_samples));
 }
 
 /// Refuses, before it starts, a flight whose simulated duration exceeds --max-sim-s.
@@ -233,7 +250,7 @@ int runFly(const FlyOptions& o) {
   std::fflush(human);
   if (log) std::cerr << fmt::format("geaware: wrote {} rows to {}\n", log->rows(), o.out);
   if (!o.json.empty()) writeJsonOutput(o.json, experiments::flightJson(s, r), run);
-  writeLearnedVehicle(o, r, run);
+  writeLearnedVehicle(o, s, r, run);
   if (series) {
     const auto html =
         experiments::writeFlightReport(o.report, series->series(), r, title(o, s), run, o.png);
@@ -314,7 +331,8 @@ void addOutputOptions(CLI::App* cmd, FlyOptions& o) {
   cmd->add_option("--json", o.json, "write the summary as one JSON object ('-': stdout)");
   cmd->add_option("--learned-vehicle", o.learned_vehicle,
                   "with --controller …+learn or …+learn0: write the vehicle file (--vehicle's, or the "
-                  "built-in one) with F_G as the table learned in flight");
+                  "built-in one) with F_G as the table learned in flight and, once learned, the "
+                  "leveling torque scaled by the scale learned");
   cmd->add_option("--ablate", o.ablate,
                   "switch off a physical effect of the truth, for diagnosis only: "
                   "motor_reaction (J_R·ṅ), gyroscopic")

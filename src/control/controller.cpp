@@ -94,6 +94,9 @@ Controller::Controller(const model::VehicleModel& vehicle, ControllerParams para
     GroundEffectLearnerParams lp = params_.learner;
     if (params_.learn_ground_effect == GroundEffectLearning::kFromNothing) lp.prior_sigma = lp.no_model_prior_sigma;
     learner_.emplace(lp, detail::learnerPrior(vehicle, params_));
+    leveling_learner_.emplace(params_.leveling_learner, detail::levelingPrior(params_));
+    ground_effect_.setLevelingScale(leveling_learner_->scale());
+    reference_map_.setLevelingScale(leveling_learner_->scale());
   }
 }
 
@@ -167,6 +170,7 @@ Controller::Measured Controller::measure(const ControllerInput& in,
   m.w_f = mem_.w_filter_.update(in.gyro_B);
   m.w_dot_f = mem_.have_last_w_ ? Eigen::Vector3d((m.w_f - mem_.last_w_f_) / dt_s_) : Eigen::Vector3d::Zero();
   mem_.last_w_f_ = m.w_f;
+  mem_.last_w_dot_f_ = m.w_dot_f;
   mem_.have_last_w_ = true;
   m.n_sq_rpm2 = in.rotor_speeds_rpm.cwiseAbs2();
   const Eigen::Vector4d wrench_meas = mixer_.wrench(m.n_sq_rpm2);
@@ -322,6 +326,7 @@ ControllerOutput Controller::update(const ControllerInput& in) noexcept {
   if ((out.flags & kFlagReferenceInvalid) != 0) mem_.last_flags_ = out.flags;
   monitorMotors(in, out);
   if (learner_) learnGroundEffect(in);
+  if (leveling_learner_) learnLeveling(in, out.tau_hat_B);
   return out;
 }
 

@@ -32,6 +32,11 @@ inline constexpr double kFarFromGroundM = 100.0;
 /// The learner's starting curve at its knots: the vehicle file's F_G, or none at all.
 [[nodiscard]] std::vector<double> learnerPrior(const model::VehicleModel& vehicle, const ControllerParams& p);
 
+/// The leveling scale's start: 1 (the vehicle file's M_G) for "+learn", 0 for "+learn0".
+[[nodiscard]] inline double levelingPrior(const ControllerParams& p) noexcept {
+  return p.learn_ground_effect == GroundEffectLearning::kFromVehicle ? 1.0 : 0.0;
+}
+
 /// The vehicle with F_G as a table on the learner's knots, at the prior (learning on only).
 [[nodiscard]] model::VehicleModel learningVehicle(const model::VehicleModel& vehicle, const ControllerParams& p);
 

@@ -59,4 +59,33 @@ void Controller::learnGroundEffect(const ControllerInput& in) noexcept {
   }
 }
 
+void Controller::learnLeveling(const ControllerInput& in, const Eigen::Vector3d& tau_hat_B) noexcept {
+  // The same gates as F_G's: a valid height clear of the feet, no ceiling or wall in a beam,
+  // the rotors carrying the vehicle.
+  if (!(in.height_valid && std::isfinite(in.height_m))) return;
+  if (in.height_m <= min_rotor_plane_height_m_ + kLearnAboveGearM) return;
+  if (mem_.proximity_active_) return;
+  const double thrust_acc = mem_.thrust_acc_f_mps2_;
+  if (!(thrust_acc > 0.5 * model::kGravity)) return;
+  const Eigen::Matrix3d R = in.estimate.q_WB.normalized().toRotationMatrix();
+  const double tilt = std::acos(std::clamp(R(2, 2), -1.0, 1.0));
+  // The torque the rotors do not explain, from torque INDI's filtered quantities (ω̇_f and τ̂_B
+  // through the same filter): y = J·ω̇_f + ω_f × J·ω_f − τ̂_B.
+  const Eigen::Vector3d& w = mem_.last_w_f_;
+  const Eigen::Vector3d y =
+      inertia_kgm2_.cwiseProduct(mem_.last_w_dot_f_) + w.cross(inertia_kgm2_.cwiseProduct(w)) - tau_hat_B;
+  // The file's leveling torque at the measured height and the filtered thrust, faded like the
+  // rest of the model: M̂_G(h)·T_f·Rᵀ·(z_B × z_W).
+  const Eigen::Vector3d x = R.transpose() * (mem_.fade_est_ * ground_effect_.levelingShape(in.height_m) *
+                                             mass_kg_ * thrust_acc * R.col(2).cross(Eigen::Vector3d::UnitZ()));
+  const double before = leveling_learner_->scale();
+  (void)leveling_learner_->update(x.head<2>(), y.head<2>(), tilt, in.estimate.v_W.head<2>().norm(),
+                                  in.estimate.v_W.z());
+  const double s = leveling_learner_->scale();
+  if (s != before) {
+    ground_effect_.setLevelingScale(s);
+    reference_map_.setLevelingScale(s);
+  }
+}
+
 }  // namespace geaware::control

@@ -93,6 +93,7 @@ void validateAdditions(const ControllerParams& p, model::FieldChecker& c) {
                  "': the learned F_G is fed forward by 'model' only");
     }
     for (auto& e : p.learner.validate()) c.fail("learner." + e.field, e.value, e.expected);
+    for (auto& e : p.leveling_learner.validate()) c.fail("leveling_learner." + e.field, e.value, e.expected);
   }
   if (p.per_rotor_ground_effect && p.acceleration != AccelerationCompensation::kModel &&
       !detail::usesJPrime(p.torque)) {

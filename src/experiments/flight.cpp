@@ -365,6 +365,11 @@ class FlightLoop {
       }
       g.offset = l.offset();
       g.samples = l.used();
+      if (const control::LevelingLearner* ll = controller_->levelingLearner(); ll != nullptr) {
+        g.leveling_scale = ll->scale();
+        g.leveling_learned = ll->learned();
+        g.leveling_samples = ll->used();
+      }
       result_.learned_ground_effect = std::move(g);
     }
     if (contact_) {

@@ -43,7 +43,7 @@ double GroundEffectModel::thrustRatioSlope(double h_m) const noexcept {
   return -2.0 * thrust_.g2_m2 * h_m / (den * den);
 }
 
-double GroundEffectModel::levelingCoefficient(double h_m) const noexcept {
+double GroundEffectModel::levelingShape(double h_m) const noexcept {
   const double h = effectiveHeight(h_m);
   if (!leveling_table_.empty()) return leveling_table_.value(h);
   const double den = h * h + leveling_.g3_m * h + leveling_.g4_m2;

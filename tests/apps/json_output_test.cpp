@@ -241,10 +241,37 @@ TEST(JsonOutput, FlyWritesTheLearnedGroundEffectAsAVehicleFile) {
   EXPECT_DOUBLE_EQ(model["rows"][0]["F_G"].get<double>(), f_g[1]);
   EXPECT_DOUBLE_EQ(model["rows"][1]["F_G"].get<double>(), f_g[5]);
   EXPECT_GT(f_g[1], 0.05) << "something was learned near the ground";
+  // A level descent does not excite the leveling scale: the file's leveling torque is kept.
+  EXPECT_NE(text.find("    scale_m4: 2.1791e-5\n"), std::string::npos) << text;
   const fs::path c = scratch() / "learned_c.yaml";
   EXPECT_NE(geaware("fly --trajectory hover-descent --height 0.2 --speed 0.5 --controller recommended "
                     "--quiet --learned-vehicle '" + c.string() + "'")
                 .exit_code,
             0);
   EXPECT_FALSE(fs::exists(c));
+}
+
+// Two laps sweeping 0.1–0.3 m excite the leveling scale: the file's leveling torque comes out
+// scaled by it, and `geaware model` reads M_G back scaled by the same factor at every height.
+TEST(JsonOutput, FlyWritesTheLearnedLevelingScaleIntoTheVehicleFile) {
+  const fs::path a = scratch() / "learned_leveling.yaml";
+  ASSERT_EQ(geaware("fly --trajectory lemniscate --height 0.1 --height-swing 0.2 --speed 1 --extent-x 1.5 "
+                    "--extent-y 0.8 --laps 2 --controller recommended+learn0 --seed 1 --quiet --learned-vehicle '" +
+                    a.string() + "'")
+                .exit_code,
+            0);
+  const std::string text = readText(a);
+  std::smatch written;
+  ASSERT_TRUE(std::regex_search(text, written, std::regex(R"(\n    scale_m4: ([0-9.eE+-]+)  # identified from)"))) << text;
+  const double scale = std::stod(written[1].str()) / 2.1791e-5;  // the built-in file's scale
+  EXPECT_GT(scale, 0.2);
+  EXPECT_LT(scale, 1.0) << "the as-built world levels less than the platform said";
+  const Json learned = parse(geaware("model --vehicle '" + a.string() + "' --heights 0.1:0.3:0.1 --json -"), "model");
+  const Json builtin = parse(geaware("model --heights 0.1:0.3:0.1 --json -"), "model");
+  ASSERT_EQ(learned["rows"].size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_NEAR(learned["rows"][i]["M_G_m"].get<double>() / builtin["rows"][i]["M_G_m"].get<double>(), scale,
+                1e-12 * scale)
+        << i;
+  }
 }

@@ -165,6 +165,10 @@ class Controller {
   [[nodiscard]] const GroundEffectLearner* learner() const noexcept {
     return learner_ ? &*learner_ : nullptr;
   }
+  /// The in-flight leveling-scale learner (with learning on), or null.
+  [[nodiscard]] const LevelingLearner* levelingLearner() const noexcept {
+    return leveling_learner_ ? &*leveling_learner_ : nullptr;
+  }
 
  private:
   /// Throttles that hold a level hover at the last valid height: the safe output for a tick
@@ -178,6 +182,9 @@ class Controller {
   /// One sample for the in-flight F_G learner after a finite step; the models take the new
   /// curve when it changes.
   void learnGroundEffect(const ControllerInput& in) noexcept;
+  /// One sample for the leveling-scale learner, from this tick's torque-INDI quantities; the
+  /// models take the scale when it changes.
+  void learnLeveling(const ControllerInput& in, const Eigen::Vector3d& tau_hat_B) noexcept;
   /// The per-rotor speed loop's throttle corrections (zero when off).
   [[nodiscard]] Eigen::Vector4d rotorSpeedCorrection(const ControllerInput& in) noexcept;
 
@@ -279,6 +286,9 @@ class Controller {
   /// F_G learned in flight (with learning on; ground_effect_ and reference_map_ then hold F_G
   /// as a table on the learner's knots).
   std::optional<GroundEffectLearner> learner_;
+  /// The leveling torque's scale learned in flight (with learning on; ground_effect_ and
+  /// reference_map_ then scale M_G by it).
+  std::optional<LevelingLearner> leveling_learner_;
 
   /// Everything update() changes from tick to tick (fixed size, no allocation). A tick whose
   /// commands come out non-finite (inputs finite but so large that the arithmetic overflows)
@@ -307,6 +317,7 @@ class Controller {
     Eigen::Vector3d ground_normal_W_ = Eigen::Vector3d::UnitZ();
     double thrust_acc_f_mps2_ = 0.0;  // |filtered thrust vector|, T_f/m [m/s²]
     Eigen::Vector3d last_w_f_ = Eigen::Vector3d::Zero();
+    Eigen::Vector3d last_w_dot_f_ = Eigen::Vector3d::Zero();  // ω̇_f of the last tick [rad/s²]
     bool have_last_w_ = false;
     double thrust_pi_integral_ = 0.0;
     double last_height_m_;

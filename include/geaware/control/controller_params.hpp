@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include "geaware/control/ground_effect_learner.hpp"
+#include "geaware/control/leveling_learner.hpp"
 #include "geaware/model/field_error.hpp"
 
 namespace geaware::control {
@@ -116,6 +117,9 @@ struct ControllerParams {
   GroundEffectLearning learn_ground_effect = GroundEffectLearning::kOff;
   /// The learner's knots, forgetting, gates and bounds (with learning on).
   GroundEffectLearnerParams learner;
+  /// The leveling torque's scale, learned with F_G (with learning on; from 1, the vehicle file's
+  /// M_G, with "+learn", from 0 with "+learn0"): its forgetting, excitation gate and bounds.
+  LevelingLearnerParams leveling_learner;
   /// Per-rotor ground effect from the ranger's view of the ground (issue 13 item 1,
   /// docs/controller.md "Per-rotor ground effect"): F_G at each rotor's own height, so the
   /// extra lift and the torque of partial ground effect (some rotors over a table, others over

@@ -75,7 +75,8 @@ struct GroundEffectLearnerParams {
 [[nodiscard]] double knotCurve(const double* knots_m, const double* values, std::size_t n, double h_m) noexcept;
 
 enum class LearnerSample : std::uint8_t {
-  kUsed, kOffset, kNonFinite, kOutsideKnots, kOutlier, kTilted, kFast, kClimbing
+  kUsed, kOffset, kNonFinite, kOutsideKnots, kOutlier, kTilted, kFast, kClimbing,
+  kUnexcited  ///< the leveling learner's regressor is below its excitation gate
 };
 
 class GroundEffectLearner {

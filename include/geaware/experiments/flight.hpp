@@ -222,6 +222,11 @@ struct LearnedGroundEffect {
   std::vector<bool> learned;      ///< whether enough samples reached the knot
   double offset = 0.0;            ///< the offset found far from the ground [-]
   std::uint64_t samples = 0;      ///< samples used for the curve
+  /// The leveling torque's scale on the vehicle file's M_G in use at the end (the prior when
+  /// never excited) [-], whether it was learned, and the samples it used.
+  double leveling_scale = 1.0;
+  bool leveling_learned = false;
+  std::uint64_t leveling_samples = 0;
 
   /// The curve at h: linear between the knots, the end values held outside [-].
   [[nodiscard]] double ratio(double h_m) const noexcept;

@@ -71,6 +71,8 @@ class FlatMap {
   /// The model's F_G table values replaced (same knots; see model::GroundEffectModel), for a
   /// curve learned in flight. No allocation.
   void setThrustTableValues(const double* values) noexcept { ground_effect_.setThrustTableValues(values); }
+  /// A factor on the vehicle file's leveling torque M_G (the scale learned in flight).
+  void setLevelingScale(double scale) noexcept { ground_effect_.setLevelingScale(scale); }
 
   [[nodiscard]] const GroundEffectTerms& terms() const noexcept { return terms_; }
 

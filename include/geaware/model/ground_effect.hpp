@@ -38,7 +38,16 @@ class GroundEffectModel {
 
   /// Leveling coefficient M_G(h) = scale·h/(h²+g3·h+g4)² [m]: leveling torque per newton of
   /// thrust per unit sin δ.
-  [[nodiscard]] double levelingCoefficient(double h_m) const noexcept;
+  [[nodiscard]] double levelingCoefficient(double h_m) const noexcept {
+    return leveling_scale_ * levelingShape(h_m);
+  }
+  /// M_G(h) as the vehicle file gives it, without the scale learned in flight
+  /// (setLevelingScale) [m].
+  [[nodiscard]] double levelingShape(double h_m) const noexcept;
+  /// A factor on the vehicle file's M_G everywhere it is used (the leveling scale learned in
+  /// flight, control/leveling_learner.hpp); 1 as built, which changes nothing bit for bit.
+  void setLevelingScale(double scale) noexcept { leveling_scale_ = scale; }
+  [[nodiscard]] double levelingScale() const noexcept { return leveling_scale_; }
 
   /// Height of the maximum of M_G, (−g3 + √(g3² + 12·g4))/6 [m]; for a table, the knot with
   /// the largest value (PCHIP does not overshoot, so the maximum lies at a knot).
@@ -89,6 +98,7 @@ class GroundEffectModel {
   Eigen::Vector3d inertia_kgm2_;
   double min_height_m_;
   double induced_velocity_sq_ = 0.0;  ///< v_i² of the forward fade; 0: none [m²/s²]
+  double leveling_scale_ = 1.0;       ///< factor on the file's M_G (learned in flight) [-]
   AdditionalThrustParams thrust_;
   LevelingTorqueParams leveling_;
   HeightTable thrust_table_;    ///< empty: the closed form
