@@ -339,8 +339,16 @@ ControllerOutput Controller::step(const ControllerInput& in) noexcept {
   mem_.fade_ref_ = ground_effect_.forwardFade(in.reference.v_W);
   mem_.fade_est_ = ground_effect_.forwardFade(in.estimate.v_W);
 
-  // 1. Reference from the flat map at that height; the filtered measurements.
-  const flatness::FlatState ref = reference_map_.evaluate(in.reference, h);
+  // 1. Reference from the flat map at that height (the rates and thrust it feeds forward); the
+  //    filtered measurements. The reference yaw's cosine and sine are cached: a reference's yaw
+  //    seldom changes from one update to the next. Compared bit for bit: −0 is not +0 here
+  //    (sin(−0) = −0).
+  if (std::bit_cast<std::uint64_t>(in.reference.yaw_rad) != std::bit_cast<std::uint64_t>(yaw_cached_rad_)) {
+    yaw_cached_rad_ = in.reference.yaw_rad;
+    cos_yaw_ = std::cos(yaw_cached_rad_);
+    sin_yaw_ = std::sin(yaw_cached_rad_);
+  }
+  const flatness::FlatState ref = reference_map_.evaluateRates(in.reference, h, cos_yaw_, sin_yaw_);
   if (!ref.ok() || !(ref.w_B.cwiseAbs().maxCoeff() <= kMaxRateRadps)) {
     return fallback(flags | kFlagReferenceInvalid);
   }
@@ -358,12 +366,6 @@ ControllerOutput Controller::step(const ControllerInput& in) noexcept {
 
   // 3. Attitude, body-rate and body-acceleration commands (paper eq. 32).
   const Eigen::Vector3d z_des = f_cmd.normalized();
-  // Compared bit for bit: −0 is not +0 here (sin(−0) = −0).
-  if (std::bit_cast<std::uint64_t>(in.reference.yaw_rad) != std::bit_cast<std::uint64_t>(yaw_cached_rad_)) {
-    yaw_cached_rad_ = in.reference.yaw_rad;
-    cos_yaw_ = std::cos(yaw_cached_rad_);
-    sin_yaw_ = std::sin(yaw_cached_rad_);
-  }
   const Eigen::Quaterniond q_des(attitudeFrom(z_des, cos_yaw_, sin_yaw_));
   // Attitude error ξ_e = ξ̂⁻¹∘ξ_des as an angle vector (paper eq. 32), the short way round.
   const Eigen::Vector3d xi_e = model::logMap(q_est.conjugate() * q_des);

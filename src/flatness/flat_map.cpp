@@ -135,11 +135,12 @@ Eigen::Vector3d angularAcceleration(const traj::FlatOutput& ref, const Eigen::Ma
 
 }  // namespace
 
-FlatState FlatMap::evaluate(const traj::FlatOutput& ref, double height_m) const noexcept {
-  FlatState out;
+// Steps 1–4 into `out` (default-constructed); evaluate() and evaluateRates() inline it.
+inline void FlatMap::rates(const traj::FlatOutput& ref, double height_m, double cos_yaw, double sin_yaw,
+                           FlatState& out) const noexcept {
   if (!ref.allFinite() || !std::isfinite(height_m)) {
     out.status = FlatMapStatus::kNonFiniteInput;
-    return out;
+    return;
   }
   const Eigen::Vector3d& v = ref.v_W;
   const Eigen::Vector3d& a = ref.a_W;
@@ -151,13 +152,11 @@ FlatState FlatMap::evaluate(const traj::FlatOutput& ref, double height_m) const 
   const double dy = d.y();
 
   // 1. Attitude.
-  const double cpsi = std::cos(ref.yaw_rad);
-  const double spsi = std::sin(ref.yaw_rad);
-  const Eigen::Vector3d x_C(cpsi, spsi, 0.0);
-  const Eigen::Vector3d y_C(-spsi, cpsi, 0.0);
+  const Eigen::Vector3d x_C(cos_yaw, sin_yaw, 0.0);
+  const Eigen::Vector3d y_C(-sin_yaw, cos_yaw, 0.0);
   const Eigen::Vector3d acc_g = a + Eigen::Vector3d(0.0, 0.0, model::kGravity);
   out.status = bodyAxes(acc_g + dx * v, acc_g + dy * v, y_C, out.R_WB);
-  if (out.status != FlatMapStatus::kOk) return out;
+  if (out.status != FlatMapStatus::kOk) return;
   const Eigen::Vector3d x_B = out.R_WB.col(0);
   const Eigen::Vector3d y_B = out.R_WB.col(1);
   const Eigen::Vector3d z_B = out.R_WB.col(2);
@@ -167,7 +166,7 @@ FlatState FlatMap::evaluate(const traj::FlatOutput& ref, double height_m) const 
   const double c = z_B.dot(acc_g);
   if (!(c > kMinCollectiveAcc)) {
     out.status = FlatMapStatus::kNoThrust;
-    return out;
+    return;
   }
   // The ground effect fades in forward flight (exactly 1 without a fade in the vehicle file).
   const double fade = ground_effect_.forwardFade(v);
@@ -178,7 +177,7 @@ FlatState FlatMap::evaluate(const traj::FlatOutput& ref, double height_m) const 
   // 3. Body rates from A·ω = b.
   const RateSystem A(out.R_WB, y_C, v, c, dx, dy);
   out.status = A.status();
-  if (out.status != FlatMapStatus::kOk) return out;
+  if (out.status != FlatMapStatus::kOk) return;
   const Eigen::Vector3d b(x_B.dot(ref.j_W) + dx * x_B.dot(a), -(y_B.dot(ref.j_W) + dy * y_B.dot(a)),
                           ref.yaw_rate_radps * x_C.dot(x_B));
   const Eigen::Vector3d w = A.solve(b);
@@ -186,12 +185,26 @@ FlatState FlatMap::evaluate(const traj::FlatOutput& ref, double height_m) const 
 
   // 4. Angular acceleration.
   out.w_dot_B = angularAcceleration(ref, out.R_WB, x_C, y_C, A, w, dx, dy);
+}
+
+FlatState FlatMap::evaluateRates(const traj::FlatOutput& ref, double height_m, double cos_yaw,
+                                 double sin_yaw) const noexcept {
+  FlatState out;
+  rates(ref, height_m, cos_yaw, sin_yaw, out);
+  return out;
+}
+
+FlatState FlatMap::evaluate(const traj::FlatOutput& ref, double height_m) const noexcept {
+  FlatState out;
+  rates(ref, height_m, std::cos(ref.yaw_rad), std::sin(ref.yaw_rad), out);
+  if (!out.ok()) return out;
 
   // 5. Torque with the leveling torque as an inertia change (paper eq. 30) and rotor speeds
   //    through the inverse mixer (paper eq. 2).
   const Eigen::Vector3d J = terms_.leveling_inertia
-                                ? ground_effect_.levelingInertiaDiagonal(height_m, fade)
+                                ? ground_effect_.levelingInertiaDiagonal(height_m, ground_effect_.forwardFade(ref.v_W))
                                 : inertia_kgm2_;
+  const Eigen::Vector3d& w = out.w_B;
   const Eigen::Vector3d Jw = J.cwiseProduct(w);
   out.tau_B = J.cwiseProduct(out.w_dot_B) + w.cross(Jw);
   out.q_WB = Eigen::Quaterniond(out.R_WB);

@@ -68,6 +68,13 @@ class FlatMap {
   /// Flat outputs and rotor-plane height [m] → reference state. No allocation, no exceptions.
   [[nodiscard]] FlatState evaluate(const traj::FlatOutput& ref, double height_m) const noexcept;
 
+  /// The attitude, thrust, body rates and angular acceleration of evaluate() (the same values
+  /// bit for bit), without the torque, the quaternion and the rotor speeds: what a controller's
+  /// feed-forward reads. `cos_yaw`, `sin_yaw` are std::cos and std::sin of ref.yaw_rad, which
+  /// the caller may have at hand. tau_B, q_WB, n_sq_rpm2, rotor_speeds_rpm keep their defaults.
+  [[nodiscard]] FlatState evaluateRates(const traj::FlatOutput& ref, double height_m, double cos_yaw,
+                                        double sin_yaw) const noexcept;
+
   /// The model's F_G table values replaced (same knots; see model::GroundEffectModel), for a
   /// curve learned in flight. No allocation.
   void setThrustTableValues(const double* values) noexcept { ground_effect_.setThrustTableValues(values); }
@@ -77,6 +84,9 @@ class FlatMap {
   [[nodiscard]] const GroundEffectTerms& terms() const noexcept { return terms_; }
 
  private:
+  void rates(const traj::FlatOutput& ref, double height_m, double cos_yaw, double sin_yaw,
+             FlatState& out) const noexcept;
+
   GroundEffectTerms terms_;
   double mass_kg_;
   model::GroundEffectModel ground_effect_;
