@@ -50,7 +50,7 @@ std::shared_ptr<const traj::Trajectory> makeTrajectory(const TrajectoryOptions& 
 std::string describe(const TrajectoryOptions& o) {
   if (o.lemniscate) {
     const std::string at = o.height_swing_m > 0.0
-                               ? fmt::format("{}–{} m", o.height_m, o.height_m + o.height_swing_m)
+                               ? fmt::format("{}–{:.6g} m", o.height_m, o.height_m + o.height_swing_m)
                                : fmt::format("{} m", o.height_m);
     return fmt::format("lemniscate ±{} m × ±{} m at {}, {} m/s peak, {} lap{}", o.extent_x_m,
                        o.extent_y_m, at, o.speed_mps, o.laps, o.laps == 1 ? "" : "s");

@@ -49,6 +49,12 @@ std::string formatFlight(const FlightResult& r) {
     if (g->landed) s += fmt::format("landed (land detector) at {:.3f} s\n", g->landed_t_s);
     s += fmt::format("feet on the ground at the end: {}\n", g->feet_down_at_end);
   }
+  if (const auto& l = r.learned_ground_effect) {
+    s += fmt::format("learned in flight: F_G at {} knots ({} samples, offset {:.4f}); leveling scale {:.4g} ({})\n",
+                     l->heights_m.size(), l->samples, l->offset, l->leveling_scale,
+                     l->leveling_learned ? fmt::format("learned from {} samples", l->leveling_samples)
+                                         : fmt::format("its start: not excited enough, {} samples", l->leveling_samples));
+  }
   s += fmt::format("simulated {:.2f} s in {:.3f} s: {:.0f}× real time\n", r.simulated_s, r.wall_s,
                    r.real_time_factor);
   return s;
@@ -89,6 +95,14 @@ io::Json flightJson(const FlightScenario& s, const FlightResult& r) {
                            {"landed", g->landed},
                            {"landed_t_s", g->landed_t_s},
                            {"feet_down_at_end", g->feet_down_at_end}};
+  }
+  if (const auto& l = r.learned_ground_effect) {
+    j["learned"] = {{"f_g", {{"heights_m", l->heights_m}, {"values", l->f_g}, {"learned", l->learned}}},
+                    {"offset", l->offset},
+                    {"samples", l->samples},
+                    {"leveling_scale", l->leveling_scale},
+                    {"leveling_learned", l->leveling_learned},
+                    {"leveling_samples", l->leveling_samples}};
   }
   j["simulated_s"] = r.simulated_s;
   j["wall_s"] = r.wall_s;

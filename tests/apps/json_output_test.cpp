@@ -255,15 +255,30 @@ TEST(JsonOutput, FlyWritesTheLearnedGroundEffectAsAVehicleFile) {
 // scaled by it, and `geaware model` reads M_G back scaled by the same factor at every height.
 TEST(JsonOutput, FlyWritesTheLearnedLevelingScaleIntoTheVehicleFile) {
   const fs::path a = scratch() / "learned_leveling.yaml";
-  ASSERT_EQ(geaware("fly --trajectory lemniscate --height 0.1 --height-swing 0.2 --speed 1 --extent-x 1.5 "
-                    "--extent-y 0.8 --laps 2 --controller recommended+learn0 --seed 1 --quiet --learned-vehicle '" +
-                    a.string() + "'")
-                .exit_code,
-            0);
+  const Json flight = parse(geaware("fly --trajectory lemniscate --height 0.1 --height-swing 0.2 --speed 1 "
+                                    "--extent-x 1.5 --extent-y 0.8 --laps 2 --controller recommended+learn0 --seed 1 "
+                                    "--quiet --json - --learned-vehicle '" + a.string() + "'"),
+                            "fly --learned-vehicle");
   const std::string text = readText(a);
   std::smatch written;
   ASSERT_TRUE(std::regex_search(text, written, std::regex(R"(\n    scale_m4: ([0-9.eE+-]+)  # identified from)"))) << text;
   const double scale = std::stod(written[1].str()) / 2.1791e-5;  // the built-in file's scale
+  // The JSON says what was learned: the same scale, and the F_G table the file has.
+  const Json& learned_json = flight["learned"];
+  EXPECT_TRUE(learned_json["leveling_learned"].get<bool>());
+  EXPECT_NEAR(learned_json["leveling_scale"].get<double>(), scale, 1e-12 * scale);
+  EXPECT_GT(learned_json["leveling_samples"].get<int>(), 1000);
+  ASSERT_EQ(learned_json["f_g"]["values"].size(), 11u);
+  EXPECT_EQ(learned_json["f_g"]["heights_m"][1].get<double>(), 0.1);
+  std::smatch table;
+  ASSERT_TRUE(std::regex_search(text, table, std::regex(R"(F_G: \[([^\]]*)\])"))) << text;
+  std::stringstream values(table[1].str());
+  std::size_t k = 0;
+  for (std::string v; std::getline(values, v, ','); ++k) {
+    ASSERT_LT(k, 11u);
+    EXPECT_EQ(std::stod(v), learned_json["f_g"]["values"][k].get<double>()) << "knot " << k;
+  }
+  EXPECT_EQ(k, 11u);
   EXPECT_GT(scale, 0.2);
   EXPECT_LT(scale, 1.0) << "the as-built world levels less than the platform said";
   const Json learned = parse(geaware("model --vehicle '" + a.string() + "' --heights 0.1:0.3:0.1 --json -"), "model");
