@@ -129,18 +129,22 @@ TEST(LevelingLearner, AConstantTiltNeverPublishesAScale) {
   }
 }
 
+/// 200 s at 200 Hz at one tilt x = (0.012, 0.004) N·m, the truth s = 0.6 with bias b, noisy.
+void holdOneTilt(LevelingLearner& l, const Eigen::Vector2d& b, std::mt19937_64& rng) {
+  std::normal_distribution<double> noise(0.0, 0.02);
+  const Eigen::Vector2d x(0.012, 0.004);
+  for (int i = 0; i < 40000; ++i) {
+    (void)l.update(x, 0.6 * x + b + Eigen::Vector2d(noise(rng), noise(rng)), kTilt, kSpeed, kClimb);
+  }
+}
+
 TEST(LevelingLearner, AfterLearningALongConstantTiltDoesNotMoveTheScale) {
   // 200 s at one tilt with the same torques as before: the scale stays (the data there say
   // nothing new about it, and it hardly walks).
   LevelingLearner l = learned(Eigen::Vector2d(0.01, 0.0));
   const double before = l.scale();
   std::mt19937_64 rng(9);
-  std::normal_distribution<double> noise(0.0, 0.02);
-  const Eigen::Vector2d x(0.012, 0.004);
-  for (int i = 0; i < 40000; ++i) {
-    (void)l.update(x, 0.6 * x + Eigen::Vector2d(0.01, 0.0) + Eigen::Vector2d(noise(rng), noise(rng)), kTilt,
-                   kSpeed, kClimb);
-  }
+  holdOneTilt(l, Eigen::Vector2d(0.01, 0.0), rng);
   EXPECT_NEAR(l.scale(), before, 0.02 * before);
 }
 
@@ -152,12 +156,9 @@ TEST(LevelingLearner, ABiasThatShiftsAtOneTiltMovesTheScaleBoundedlyAndTheSpread
   LevelingLearner l = learned(Eigen::Vector2d(0.01, 0.0));
   const double before = l.scale();
   std::mt19937_64 rng(9);
-  std::normal_distribution<double> noise(0.0, 0.02);
   const Eigen::Vector2d b(0.02, 0.0);
-  const Eigen::Vector2d x(0.012, 0.004);
-  for (int i = 0; i < 40000; ++i) {
-    (void)l.update(x, 0.6 * x + b + Eigen::Vector2d(noise(rng), noise(rng)), kTilt, kSpeed, kClimb);
-  }
+  holdOneTilt(l, b, rng);
+  std::normal_distribution<double> noise(0.0, 0.02);
   EXPECT_NEAR(l.scale(), before, 0.15 * before);
   EXPECT_NEAR(l.bias_Nm().x() + 0.012 * l.estimate(), b.x() + 0.012 * 0.6, 0.002);
   for (int i = 0; i < 12000; ++i) {
