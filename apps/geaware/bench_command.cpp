@@ -16,6 +16,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "geaware/experiments/beyond_suite.hpp"
@@ -24,8 +25,10 @@
 #include "geaware/experiments/campaign_summary.hpp"
 #include "geaware/experiments/fault_suite.hpp"
 #include "geaware/experiments/robustness.hpp"
+#include "geaware/experiments/suite_sweep.hpp"
 #include "geaware/experiments/sweep.hpp"
 #include "geaware/experiments/world_setup.hpp"
+#include "geaware/io/config_error.hpp"
 #include "geaware/io/controller_params_file.hpp"
 #include "geaware/io/output_file.hpp"
 #include "geaware/io/truth_file.hpp"
@@ -39,8 +42,8 @@ struct BenchOptions {
   std::string suite = "table";  ///< "table" (the paper's campaign), "robustness", "faults", "beyond"
   std::vector<std::string> cases;        ///< robustness, faults: the cases; beyond: the scenarios (empty: all)
   std::vector<std::string> controllers;  ///< robustness, faults, beyond: the configurations (empty: all)
-  std::string sweep;  ///< beyond: the suite's sweep file (empty: the shipped one)
-  bool seeds_given = false;       ///< --seeds on the command line (beyond: replaces a --sweep file's)
+  std::string sweep;  ///< robustness, faults, beyond: the suite's sweep file (empty: the shipped one)
+  bool seeds_given = false;       ///< --seeds on the command line (a suite: replaces its sweep file's)
   bool first_seed_given = false;  ///< --first-seed likewise
   std::string vehicle;
   std::string truth;
@@ -85,6 +88,19 @@ std::vector<T> pick(const std::vector<T>& all, const std::vector<std::string>& n
   return out;
 }
 
+/// The configurations named by --controllers, in the order named (all without it).
+std::vector<experiments::SuiteController> pickControllers(const BenchOptions& o,
+                                                          const std::vector<experiments::SuiteController>& all) {
+  if (o.controllers.empty()) return all;
+  return pick(all, o.controllers, "--controllers", [](const experiments::SuiteController& k) { return k.name; });
+}
+
+/// The exit status of a run whose results are in: 3 with --check when a check failed, else 0.
+template <class Check>
+int exitStatus(const BenchOptions& o, const std::vector<Check>& checks) {
+  return o.check && std::any_of(checks.begin(), checks.end(), [](const Check& c) { return !c.pass; }) ? 3 : 0;
+}
+
 /// The per-user cache directory of the Neural-Lander weights: $XDG_CACHE_HOME/geaware, else
 /// $HOME/.cache/geaware (the XDG base directory specification's default); empty without either.
 std::string defaultCacheDir() {
@@ -95,17 +111,25 @@ std::string defaultCacheDir() {
   return {};
 }
 
-/// Every output checked before any work (docs/reliability.md); returns the cache directory to
-/// use: --cache (an error when it cannot be written), else the per-user default, which falls
-/// back to no cache with a warning when it cannot be written; empty with --no-cache.
-std::string checkFiles(const BenchOptions& o) {
+/// The inputs and outputs of a run, to check before any work (docs/reliability.md); `sweep`:
+/// the suite's sweep file (empty: none).
+io::OutputChecks benchFiles(const BenchOptions& o, const std::string& sweep) {
   io::OutputChecks files;
+  files.input("--sweep", sweep);
   files.input("--vehicle", o.vehicle);
   files.input("--truth", truthInputFile(o.truth));
   files.input("--controller-params", o.controller_params);
   files.input("--neural-weights", o.neural_weights);
   files.output("--json", o.json);
   files.directory("--report", o.report);
+  return files;
+}
+
+/// Every input and output checked before any work (benchFiles); returns the cache directory to
+/// use: --cache (an error when it cannot be written), else the per-user default, which falls
+/// back to no cache with a warning when it cannot be written; empty with --no-cache.
+std::string checkFiles(const BenchOptions& o, const std::string& sweep = {}) {
+  io::OutputChecks files = benchFiles(o, sweep);
   if (!o.no_cache && !o.cache.empty()) files.directory("--cache", o.cache);
   files.check();
   if (o.no_cache || !o.cache.empty()) return o.no_cache ? std::string() : o.cache;
@@ -132,83 +156,6 @@ sim::World benchWorld(const BenchOptions& o, const model::VehicleParams& vehicle
                          : io::resolveTruth(o.truth, {});
 }
 
-/// `--suite robustness` (experiments/robustness.hpp, docs/robustness.md).
-int runRobustnessSuite(const BenchOptions& o) {
-  experiments::RobustnessOptions c;
-  c.vehicle = benchVehicle(o);
-  c.world = benchWorld(o, c.vehicle);
-  if (!o.cases.empty()) {
-    c.cells = pick(c.cells, o.cases, "--cases",
-                   [](const experiments::Perturbation& p) { return p.name; });
-  }
-  if (!o.controllers.empty()) {
-    c.controllers = pick(c.controllers, o.controllers, "--controllers",
-                         [](const experiments::SuiteController& k) { return k.name; });
-  }
-  if (!o.controller_params.empty()) c.controller_values = io::loadControllerParamsFile(o.controller_params);
-  c.seeds = o.seeds;
-  c.first_seed = o.first_seed;
-  c.jobs = o.jobs;
-  c.cache_dir = checkFiles(o);
-  TerminalProgress progress("geaware bench", o.quiet);
-  c.progress = &progress;
-  const experiments::RobustnessResult r = experiments::runRobustness(c);
-  progress.end();
-  const io::RunInfo run = runInfo(r.seeds, {o.vehicle, truthInputFile(o.truth), o.controller_params});
-  std::FILE* human = o.json == "-" ? stderr : stdout;
-  fmt::print(human, "{}\nworld: {}\n{}", commandLine(), c.world->source,
-             experiments::formatRobustness(r));
-  std::fflush(human);
-  if (!o.json.empty()) writeJsonOutput(o.json, experiments::robustnessJson(r), run);
-  if (!o.report.empty()) {
-    const auto html = experiments::writeRobustnessReport(r, o.report, run, o.png);
-    std::cerr << "geaware bench: wrote " << html.string() << (o.png ? " and robustness.png" : "")
-              << "\n";
-  }
-  if (o.check) {
-    for (const auto& chk : r.checks) {
-      if (!chk.pass) return 3;
-    }
-  }
-  return 0;
-}
-
-/// `--suite faults` (experiments/fault_suite.hpp, docs/reliability.md "Fault campaign").
-int runFaultSuite(const BenchOptions& o) {
-  experiments::FaultSuiteOptions c;
-  c.vehicle = benchVehicle(o);
-  c.world = benchWorld(o, c.vehicle);
-  if (!o.cases.empty()) {
-    c.cases = pick(c.cases, o.cases, "--cases", [](const experiments::FaultCase& k) { return k.name; });
-    if (c.cases.front().name != "none") {
-      throw UsageError("--cases: the fault suite compares every case with \"none\": list it first");
-    }
-  }
-  if (!o.controllers.empty()) {
-    c.controllers = pick(c.controllers, o.controllers, "--controllers",
-                         [](const experiments::SuiteController& k) { return k.name; });
-  }
-  if (!o.controller_params.empty()) c.controller_values = io::loadControllerParamsFile(o.controller_params);
-  c.seeds = o.seeds;
-  c.first_seed = o.first_seed;
-  c.jobs = o.jobs;
-  TerminalProgress progress("geaware bench", o.quiet);
-  c.progress = &progress;
-  const experiments::FaultSuiteResult r = experiments::runFaultSuite(c);
-  progress.end();
-  const io::RunInfo run = runInfo(r.seeds, {o.vehicle, truthInputFile(o.truth), o.controller_params});
-  std::FILE* human = o.json == "-" ? stderr : stdout;
-  fmt::print(human, "{}\nworld: {}\n{}", commandLine(), c.world->source, experiments::formatFaultSuite(r));
-  std::fflush(human);
-  if (!o.json.empty()) writeJsonOutput(o.json, experiments::faultSuiteJson(r), run);
-  if (o.check) {
-    for (const auto& chk : r.checks) {
-      if (!chk.pass) return 3;
-    }
-  }
-  return 0;
-}
-
 /// The suite's sweep file as shipped (docs/install.md): beside the running program
 /// (<prefix>/bin/../share/geaware/config/sweeps), then this source tree's config/ (a program of
 /// the build tree), then the configured install prefix's.
@@ -231,22 +178,20 @@ std::filesystem::path shippedSweepFile(const std::string& suite) {
                    "); give it with --sweep FILE");
 }
 
-/// `--suite beyond` (experiments/beyond_suite.hpp, docs/controller.md "The beyond suite").
-int runBeyondSuite(const BenchOptions& o) {
-  const std::filesystem::path file = o.sweep.empty() ? shippedSweepFile("beyond") : std::filesystem::path(o.sweep);
-  // Everything is read first (the files the sweep file names among them), then the outputs are
-  // checked against all of it, before any flight.
-  experiments::SweepSpec spec = experiments::loadSweepFile(file);
-  if (spec.cases.size() != 1) {
-    throw UsageError(fmt::format("--sweep {}: {} perturbation cases; the beyond suite flies one world (give a "
-                                 "file with one case, or fly it with `geaware sweep`)",
-                                 file.string(), spec.cases.size()));
-  }
-  (void)pick(spec.scenarios, o.cases, "--cases", [](const experiments::SweepScenario& s) { return s.name; });
-  (void)pick(spec.controllers, o.controllers, "--controllers",
-             [](const experiments::SuiteController& k) { return k.name; });
-  // --vehicle, --truth and --controller-params replace the file's; the fingerprint (the key the
-  // calibration is memoised under) says so.
+/// The suite's sweep file (--sweep, else the shipped one) and what it says, the files it names
+/// read too; --vehicle, --truth and --controller-params replace the file's, and --seeds and
+/// --first-seed its seeds when given.
+struct SuiteSweep {
+  std::filesystem::path file;
+  experiments::SweepSpec spec;
+};
+
+SuiteSweep suiteSweep(const BenchOptions& o) {
+  SuiteSweep s;
+  s.file = o.sweep.empty() ? shippedSweepFile(o.suite) : std::filesystem::path(o.sweep);
+  experiments::SweepSpec& spec = s.spec;
+  spec = experiments::loadSweepFile(s.file);
+  // The fingerprint (the key a sweep's calibration is memoised under) says what replaced what.
   if (!o.vehicle.empty() || !o.truth.empty()) {
     spec.vehicle = benchVehicle(o);
     spec.world = benchWorld(o, spec.vehicle);
@@ -254,16 +199,97 @@ int runBeyondSuite(const BenchOptions& o) {
   }
   if (!o.controller_params.empty()) spec.controller_values = io::loadControllerParamsFile(o.controller_params);
   spec.fingerprint += "|vehicle=" + o.vehicle + "|truth=" + o.truth + "|params=" + o.controller_params;
-  if (o.seeds_given || o.sweep.empty()) spec.seed_count = static_cast<std::uint64_t>(o.seeds);
-  if (o.first_seed_given || o.sweep.empty()) spec.first_seed = o.first_seed;
-  io::OutputChecks files;
-  files.input("--sweep", file.string());
-  files.input("--vehicle", o.vehicle);
-  files.input("--truth", truthInputFile(o.truth));
-  files.input("--controller-params", o.controller_params);
-  files.output("--json", o.json);
-  files.directory("--report", o.report);
-  files.check();
+  if (o.seeds_given) spec.seed_count = static_cast<std::uint64_t>(o.seeds);
+  if (o.first_seed_given) spec.first_seed = o.first_seed;
+  return s;
+}
+
+/// The options of a suite (`of`: experiments/suite_sweep.hpp) from its sweep file; a file the
+/// suite cannot fly is a usage error naming the file, the items and what the suite expects.
+template <class Options>
+Options suiteOptions(const SuiteSweep& s, const std::string& suite, Options (*of)(const experiments::SweepSpec&)) {
+  try {
+    return of(s.spec);
+  } catch (const io::ConfigError& e) {
+    throw UsageError("--suite " + suite + " cannot fly this sweep file: " + e.what());
+  }
+}
+
+/// What every suite prints once flown: the command line, the world and `text` on stdout (on
+/// stderr with --json -), and `json` with the run's provenance to --json; returns the
+/// provenance (the report pages carry it).
+io::RunInfo printSuite(const BenchOptions& o, const std::string& sweep_file, const std::vector<std::uint64_t>& seeds,
+                       const std::string& world, const std::string& text, io::Json json) {
+  const io::RunInfo run = runInfo(seeds, {sweep_file, o.vehicle, truthInputFile(o.truth), o.controller_params});
+  std::FILE* human = o.json == "-" ? stderr : stdout;
+  fmt::print(human, "{}\nworld: {}\n{}", commandLine(), world, text);
+  std::fflush(human);
+  if (!o.json.empty()) writeJsonOutput(o.json, std::move(json), run);
+  return run;
+}
+
+/// `--suite robustness` (experiments/robustness.hpp, docs/robustness.md).
+int runRobustnessSuite(const BenchOptions& o) {
+  const SuiteSweep sweep = suiteSweep(o);
+  experiments::RobustnessOptions c = suiteOptions(sweep, o.suite, &experiments::robustnessOptionsOf);
+  if (!o.cases.empty()) {
+    c.cells = pick(c.cells, o.cases, "--cases",
+                   [](const experiments::Perturbation& p) { return p.name; });
+  }
+  c.controllers = pickControllers(o, c.controllers);
+  c.jobs = o.jobs;
+  c.cache_dir = checkFiles(o, sweep.file.string());
+  TerminalProgress progress("geaware bench", o.quiet);
+  c.progress = &progress;
+  const experiments::RobustnessResult r = experiments::runRobustness(c);
+  progress.end();
+  const io::RunInfo run = printSuite(o, sweep.file.string(), r.seeds, c.world->source, experiments::formatRobustness(r),
+                                     experiments::robustnessJson(r));
+  if (!o.report.empty()) {
+    const auto html = experiments::writeRobustnessReport(r, o.report, run, o.png);
+    std::cerr << "geaware bench: wrote " << html.string() << (o.png ? " and robustness.png" : "")
+              << "\n";
+  }
+  return exitStatus(o, r.checks);
+}
+
+/// `--suite faults` (experiments/fault_suite.hpp, docs/reliability.md "Fault campaign").
+int runFaultSuite(const BenchOptions& o) {
+  const SuiteSweep sweep = suiteSweep(o);
+  experiments::FaultSuiteOptions c = suiteOptions(sweep, o.suite, &experiments::faultSuiteOptionsOf);
+  if (!o.cases.empty()) {
+    c.cases = pick(c.cases, o.cases, "--cases", [](const experiments::FaultCase& k) { return k.name; });
+    if (c.cases.front().name != "none") {
+      throw UsageError("--cases: the fault suite compares every case with \"none\": list it first");
+    }
+  }
+  c.controllers = pickControllers(o, c.controllers);
+  c.jobs = o.jobs;
+  benchFiles(o, sweep.file.string()).check();
+  TerminalProgress progress("geaware bench", o.quiet);
+  c.progress = &progress;
+  const experiments::FaultSuiteResult r = experiments::runFaultSuite(c);
+  progress.end();
+  (void)printSuite(o, sweep.file.string(), r.seeds, c.world->source, experiments::formatFaultSuite(r),
+                   experiments::faultSuiteJson(r));
+  return exitStatus(o, r.checks);
+}
+
+/// `--suite beyond` (experiments/beyond_suite.hpp, docs/controller.md "The beyond suite").
+int runBeyondSuite(const BenchOptions& o) {
+  // Everything is read first (the files the sweep file names among them), then the outputs are
+  // checked against all of it, before any flight.
+  const SuiteSweep sweep = suiteSweep(o);
+  const experiments::SweepSpec& spec = sweep.spec;
+  const std::filesystem::path& file = sweep.file;
+  if (spec.cases.size() != 1) {
+    throw UsageError(fmt::format("--sweep {}: {} perturbation cases; the beyond suite flies one world (give a "
+                                 "file with one case, or fly it with `geaware sweep`)",
+                                 file.string(), spec.cases.size()));
+  }
+  (void)pick(spec.scenarios, o.cases, "--cases", [](const experiments::SweepScenario& s) { return s.name; });
+  (void)pickControllers(o, spec.controllers);
+  benchFiles(o, file.string()).check();
 
   experiments::BeyondOptions c;
   c.scenarios = o.cases;
@@ -274,22 +300,14 @@ int runBeyondSuite(const BenchOptions& o) {
   c.progress = &progress;
   const experiments::BeyondResult r = experiments::runBeyond(spec, c);
   progress.end();
-  const io::RunInfo run = runInfo(r.seeds, {file.string(), o.vehicle, truthInputFile(o.truth), o.controller_params});
-  std::FILE* human = o.json == "-" ? stderr : stdout;
-  fmt::print(human, "{}\nworld: {}\n{}", commandLine(), spec.world.source, experiments::formatBeyond(r));
-  std::fflush(human);
-  if (!o.json.empty()) writeJsonOutput(o.json, experiments::beyondJson(r), run);
+  const io::RunInfo run =
+      printSuite(o, file.string(), r.seeds, spec.world.source, experiments::formatBeyond(r), experiments::beyondJson(r));
   if (!o.report.empty()) {
     const auto html = experiments::writeBeyondReport(r, o.report, run, o.png);
     std::cerr << "geaware bench: wrote " << html.string() << " and a page per scenario"
               << (o.png ? " and beyond.png" : "") << "\n";
   }
-  if (o.check) {
-    for (const auto& chk : r.checks) {
-      if (!chk.pass) return 3;
-    }
-  }
-  return 0;
+  return exitStatus(o, r.checks);
 }
 
 int runBench(const BenchOptions& o) {
@@ -348,12 +366,7 @@ int runBench(const BenchOptions& o) {
     const auto html = experiments::writeCampaignReport(r, o.report, run, o.png);
     std::cerr << "geaware bench: wrote " << html.string() << (o.png ? " and bench.png" : "") << "\n";
   }
-  if (o.check) {
-    for (const auto& chk : r.checks) {
-      if (!chk.pass) return 3;
-    }
-  }
-  return 0;
+  return exitStatus(o, r.checks);
 }
 
 }  // namespace
@@ -371,21 +384,23 @@ Runner addBenchCommand(CLI::App& app) {
                   "recommended with a motor, sensor, battery or gust fault mid-flight (docs/reliability.md); "
                   "'beyond': the paper's configuration, INDI and recommended past the paper: a table edge, "
                   "a step, a ramp, a ceiling, a wall, 5 m/s low, a landing, a take-off, learning in flight "
-                  "(docs/controller.md)")
+                  "(docs/controller.md). The last three fly the grid of their shipped sweep file, "
+                  "config/sweeps/SUITE.yaml, or of --sweep FILE")
       ->check(CLI::IsMember({"table", "robustness", "faults", "beyond"}))
       ->capture_default_str();
   cmd->add_option("--cases", o->cases,
-                  "robustness, faults: fly only these cases, comma separated (default: all; names in "
-                  "docs/robustness.md, e.g. none,mass+10%); beyond: only these scenarios (e.g. landing,takeoff)")
+                  "robustness, faults: fly only these of the sweep file's cases, comma separated (default: all; "
+                  "names in docs/robustness.md, e.g. none,mass+10%); beyond: only these scenarios (e.g. "
+                  "landing,takeoff)")
       ->delimiter(',');
   cmd->add_option("--controllers", o->controllers,
-                  "robustness, faults, beyond: fly only these configurations, comma separated (default: all; e.g. "
-                  "model:model_indi,recommended)")
+                  "robustness, faults, beyond: fly only these of the sweep file's configurations, comma separated "
+                  "(default: all; e.g. model:model_indi,recommended)")
       ->delimiter(',');
   cmd->add_option("--sweep", o->sweep,
-                  "beyond: the suite's sweep file (docs/sweeps.md; default: the shipped "
-                  "config/sweeps/beyond.yaml): its scenarios, controllers and seeds (--seeds and --first-seed "
-                  "replace them), flown in its one case's world")
+                  "robustness, faults, beyond: the suite's sweep file (docs/sweeps.md; default: the shipped "
+                  "config/sweeps/robustness.yaml, faults.yaml, beyond.yaml): its cases, controllers, scenarios "
+                  "and seeds (--seeds and --first-seed replace them); beyond flies its one case's world")
       ->check(CLI::ExistingFile);
   addVehicleOption(cmd, o->vehicle,
                    "vehicle YAML file (default: the built-in paper quadrotor); the controller gets it "
@@ -399,10 +414,13 @@ Runner addBenchCommand(CLI::App& app) {
                  "the world the rigs and flights run in: a truth file (docs/truth-file.md; any "
                  "vehicle file is one) or a built-in world (ideal, as_built) (default: as_built with "
                  "the built-in vehicle)");
-  cmd->add_option("--seeds", o->seeds, "flights per experiment, hover curve or suite cell")
+  cmd->add_option("--seeds", o->seeds,
+                  "flights per experiment or hover curve; per suite cell, replacing the sweep file's (the "
+                  "shipped files': 5)")
       ->capture_default_str()
       ->check(wholeIn(1, 1000));
-  cmd->add_option("--first-seed", o->first_seed, "seeds are first-seed … first-seed + seeds − 1")
+  cmd->add_option("--first-seed", o->first_seed,
+                  "seeds are first-seed … first-seed + seeds − 1 (a suite: replaces the sweep file's)")
       ->check(seed())
       ->capture_default_str();
   cmd->add_option("--only", o->only,
@@ -451,8 +469,8 @@ Runner addBenchCommand(CLI::App& app) {
     if (o->suite == "table" && (!o->cases.empty() || !o->controllers.empty())) {
       throw CLI::ValidationError("--cases", "--cases and --controllers need --suite robustness, faults or beyond");
     }
-    if (o->suite != "beyond" && !o->sweep.empty()) {
-      throw CLI::ValidationError("--sweep", "--sweep applies to --suite beyond");
+    if (o->suite == "table" && !o->sweep.empty()) {
+      throw CLI::ValidationError("--sweep", "--sweep applies to --suite robustness, faults and beyond");
     }
     if (o->suite == "beyond" && (!o->cache.empty() || o->no_cache)) {
       throw CLI::ValidationError("--cache", "--cache and --no-cache apply to --suite table and robustness "

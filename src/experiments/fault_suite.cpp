@@ -14,7 +14,6 @@
 
 #include "geaware/control/controller_schema.hpp"
 #include "geaware/experiments/flight_pool.hpp"
-#include "geaware/experiments/table_one.hpp"
 #include "geaware/experiments/world_setup.hpp"
 #include "geaware/traj/lemniscate.hpp"
 
@@ -124,16 +123,6 @@ std::vector<FaultCase> faultCases() {
   return c;
 }
 
-std::vector<SuiteController> faultControllers() {
-  std::vector<SuiteController> out;
-  for (const auto& c : robustnessControllers()) {
-    if (c.name == "model:model_indi" || c.name == "indi:none" || c.name == "recommended") out.push_back(c);
-  }
-  return out;
-}
-
-std::vector<SuiteCondition> faultConditions() { return {{1, 0.12, 1.0}, {1, 1.0, 1.0}}; }
-
 FaultSuiteResult runFaultSuite(const FaultSuiteOptions& o) {
   if (o.seeds < 1) throw std::invalid_argument("fault suite: seeds must be at least 1");
   if (o.cases.empty() || o.cases.front().name != "none") {
@@ -141,6 +130,18 @@ FaultSuiteResult runFaultSuite(const FaultSuiteOptions& o) {
   }
   if (o.controllers.empty() || o.conditions.empty()) {
     throw std::invalid_argument("fault suite: no controller or no height to fly");
+  }
+  for (std::size_t i = 0; i < o.conditions.size(); ++i) {
+    const SuiteCondition& c = o.conditions[i];
+    if (const auto problems = c.lemniscate.validate(); !problems.empty()) {
+      throw std::invalid_argument("fault suite: height/speed '" + c.name + "': " + problems.front());
+    }
+    for (std::size_t j = 0; j < i; ++j) {
+      // The cells of a case and controller are told apart by their height.
+      if (o.conditions[j].height_m() == c.height_m()) {
+        throw std::invalid_argument(fmt::format("fault suite: two heights/speeds at {:g} m", c.height_m()));
+      }
+    }
   }
   for (const auto& c : o.cases) {
     const auto problems = validate(c.faults);
@@ -179,13 +180,10 @@ FaultSuiteResult runFaultSuite(const FaultSuiteOptions& o) {
   std::vector<FlightJob> jobs;
   for (const auto& fc : o.cases) {
     for (const auto& cond : o.conditions) {
-      traj::LemniscateParams lp = lemniscateFor(tableOneExperiment(cond.experiment));
-      lp.height_m = cond.height_m;
-      lp.peak_speed_mps = cond.speed_mps;
-      const auto trajectory = std::make_shared<traj::Lemniscate>(lp);
+      const auto trajectory = std::make_shared<traj::Lemniscate>(cond.lemniscate);
       for (const auto& c : o.controllers) {
         FaultCell cell;
-        cell.cell = SuiteCell{fc.name, c.name, cond.height_m, cond.speed_mps, {}};
+        cell.cell = SuiteCell{fc.name, c.name, cond.height_m(), cond.speed_mps(), {}};
         cell.survivable = fc.survivable;
         r.cells.push_back(std::move(cell));
         for (const auto seed : r.seeds) {
@@ -200,7 +198,7 @@ FaultSuiteResult runFaultSuite(const FaultSuiteOptions& o) {
             f.eskf.imu_accel_range_m_per_s2 = 4.0 * model::kGravity;
           }
           jobs.push_back({std::move(f), nullptr,
-                          fmt::format("{} {} {:.2f} m seed {}", fc.name, c.name, cond.height_m, seed)});
+                          fmt::format("{} {} {:.2f} m seed {}", fc.name, c.name, cond.height_m(), seed)});
         }
       }
     }

@@ -68,7 +68,7 @@ std::string formatFaultSuite(const FaultSuiteResult& r) {
       r.seeds.size() == 1 ? "" : "s", r.flights, r.recommended);
   std::size_t k = 0;
   for (const auto& cond : r.conditions) {
-    out += fmt::format("\n{:.2f} m / {:g} m/s (exp 1's lemniscate)\n  {:<17}", cond.height_m, cond.speed_mps, "case");
+    out += fmt::format("\n{:.2f} m / {:g} m/s ({})\n  {:<17}", cond.height_m(), cond.speed_mps(), cond.describe(), "case");
     for (const auto& c : r.controllers) out += fmt::format(" {:>30}", c);
     out += "\n";
     for (const auto& fc : r.cases) {
@@ -76,7 +76,7 @@ std::string formatFaultSuite(const FaultSuiteResult& r) {
       for (std::size_t i = 0; i < r.controllers.size(); ++i) {
         const FaultCell* cell = nullptr;
         for (const auto& c : r.cells) {
-          if (c.cell.case_name == fc.name && c.cell.controller == r.controllers[i] && c.cell.height_m == cond.height_m) cell = &c;
+          if (c.cell.case_name == fc.name && c.cell.controller == r.controllers[i] && c.cell.height_m == cond.height_m()) cell = &c;
         }
         out += fmt::format(" {:>30}", cell != nullptr ? cellText(*cell) : "-");
       }

@@ -135,35 +135,25 @@ void applyPerturbation(const Perturbation& p, FlightScenario& s) {
   }
 }
 
-std::vector<SuiteController> robustnessControllers() {
-  std::vector<SuiteController> out;
-  std::set<std::string> seen;
-  const auto add = [&](const control::ControllerParams& p) {
-    const std::string name = control::configurationName(p);
-    if (seen.insert(name).second) out.push_back({name, p});
-  };
-  for (const auto& e : tableOneExperiments()) {
-    if (e.recommended) continue;  // the paper's rows only
-    control::ControllerParams p;
-    p.acceleration = e.acceleration;
-    p.torque = e.torque;
-    add(p);
-  }
-  control::ControllerParams indi;
-  indi.acceleration = control::AccelerationCompensation::kIndi;
-  indi.torque = control::TorqueCompensation::kIndi;
-  add(indi);
-  add(control::recommendedControllerParams());
-  return out;
+std::string SuiteCondition::describe() const {
+  return experiment > 0 ? fmt::format("exp {}'s lemniscate", experiment) : "lemniscate " + name;
 }
 
-std::vector<SuiteCondition> robustnessConditions() {
-  std::vector<SuiteCondition> out;
-  for (int n : {1, 6}) {
-    const auto& e = tableOneExperiment(n);
-    out.push_back({n, e.height_m, e.speed_mps});
+SuiteCondition suiteCondition(const traj::LemniscateParams& lemniscate, std::string name) {
+  SuiteCondition c{std::move(name), lemniscate, 0};
+  for (const auto& e : tableOneExperiments()) {
+    const traj::LemniscateParams shape = lemniscateFor(e);  // its height and speed aside
+    const bool same = shape.centre_xy_m == lemniscate.centre_xy_m &&
+                      shape.half_extent_x_m == lemniscate.half_extent_x_m &&
+                      shape.half_extent_y_m == lemniscate.half_extent_y_m &&
+                      shape.height_swing_m == lemniscate.height_swing_m && shape.laps == lemniscate.laps &&
+                      shape.ramp_time_s == lemniscate.ramp_time_s && shape.yaw_rad == lemniscate.yaw_rad;
+    if (same) {
+      c.experiment = e.number;
+      break;
+    }
   }
-  return out;
+  return c;
 }
 
 int SuiteCell::strikes() const noexcept {
@@ -222,7 +212,16 @@ void checkOptions(const RobustnessOptions& o) {
       throw std::invalid_argument("robustness: controller '" + c.name + "' is listed twice");
     }
   }
-  for (const auto& c : o.conditions) (void)tableOneExperiment(c.experiment);
+  std::set<double> heights;
+  for (const auto& c : o.conditions) {
+    if (const auto problems = c.lemniscate.validate(); !problems.empty()) {
+      throw std::invalid_argument("robustness: height/speed '" + c.name + "': " + problems.front());
+    }
+    // The cells of a case and controller are told apart by their height.
+    if (!heights.insert(c.height_m()).second) {
+      throw std::invalid_argument(fmt::format("robustness: two heights/speeds at {:g} m", c.height_m()));
+    }
+  }
 }
 
 bool fliesNeural(const RobustnessOptions& o) {
@@ -331,10 +330,9 @@ RobustnessResult runRobustness(const RobustnessOptions& o) {
     const Perturbation& p = o.cells[k];
     const CalibratedWorld& w = worlds[world_of_case[k]];
     for (const auto& cond : o.conditions) {
-      const auto trajectory =
-          std::make_shared<traj::Lemniscate>(lemniscateFor(tableOneExperiment(cond.experiment)));
+      const auto trajectory = std::make_shared<traj::Lemniscate>(cond.lemniscate);
       for (const auto& c : o.controllers) {
-        SuiteCell cell{p.name, c.name, cond.height_m, cond.speed_mps, {}};
+        SuiteCell cell{p.name, c.name, cond.height_m(), cond.speed_mps(), {}};
         r.cells.push_back(std::move(cell));
         for (const auto seed : r.seeds) {
           FlightScenario f = w.base;
@@ -346,7 +344,7 @@ RobustnessResult runRobustness(const RobustnessOptions& o) {
           }
           f.seed = seed;
           jobs.push_back({std::move(f), nullptr,
-                          fmt::format("{} {} {:.2f} m seed {}", p.name, c.name, cond.height_m, seed)});
+                          fmt::format("{} {} {:.2f} m seed {}", p.name, c.name, cond.height_m(), seed)});
         }
       }
     }

@@ -23,8 +23,8 @@ int heatMapHeight(std::size_t rows) { return 160 + 28 * static_cast<int>(rows); 
 
 report::HeatMap strikesMap(const RobustnessResult& r, const SuiteCondition& cond) {
   report::HeatMap m;
-  m.title = fmt::format("Strikes, {:.2f} m / {:g} m/s (of {} flight{} per cell)", cond.height_m,
-                        cond.speed_mps, r.seeds.size(), r.seeds.size() == 1 ? "" : "s");
+  m.title = fmt::format("Strikes, {:.2f} m / {:g} m/s (of {} flight{} per cell)", cond.height_m(),
+                        cond.speed_mps(), r.seeds.size(), r.seeds.size() == 1 ? "" : "s");
   m.x_label = "controller";
   m.y_label = "case";
   m.columns = r.controllers;
@@ -38,7 +38,7 @@ report::HeatMap strikesMap(const RobustnessResult& r, const SuiteCondition& cond
     std::vector<double> z;
     std::vector<std::string> text;
     for (const auto& c : r.controllers) {
-      const SuiteCell* cell = r.cell(p.name, c, cond.height_m);
+      const SuiteCell* cell = r.cell(p.name, c, cond.height_m());
       z.push_back(cell ? cell->strikes() : kNaN);
       text.push_back(cell ? std::to_string(cell->strikes()) : "");
     }
@@ -52,7 +52,7 @@ report::HeatMap rmseMap(const RobustnessResult& r, const SuiteCondition& cond) {
   report::HeatMap m;
   m.title = fmt::format("All-RMSE of the finished flights [cm], {:.2f} m / {:g} m/s (blank: all "
                         "struck; colour capped at 10 cm)",
-                        cond.height_m, cond.speed_mps);
+                        cond.height_m(), cond.speed_mps());
   m.x_label = "controller";
   m.y_label = "case";
   m.columns = r.controllers;
@@ -66,7 +66,7 @@ report::HeatMap rmseMap(const RobustnessResult& r, const SuiteCondition& cond) {
     std::vector<double> z;
     std::vector<std::string> text;
     for (const auto& c : r.controllers) {
-      const SuiteCell* cell = r.cell(p.name, c, cond.height_m);
+      const SuiteCell* cell = r.cell(p.name, c, cond.height_m());
       const double v = cell ? cell->meanFinished(&SuiteFlight::rmse_all_cm) : kNaN;
       z.push_back(v);
       std::string t = std::isnan(v) ? (cell ? "struck" : "") : fmt::format("{:.2f}", v);
@@ -102,8 +102,7 @@ report::Page robustnessPage(const RobustnessResult& r, const io::RunInfo& run) {
   for (const auto& p : r.cases) cases.rows.push_back({p.name, p.meaning()});
   page.addTable(std::move(cases));
   for (const auto& cond : r.conditions) {
-    page.addHeading(fmt::format("{:.2f} m / {:g} m/s (exp {}'s lemniscate)", cond.height_m,
-                                cond.speed_mps, cond.experiment));
+    page.addHeading(fmt::format("{:.2f} m / {:g} m/s ({})", cond.height_m(), cond.speed_mps(), cond.describe()));
     page.addHeatMap(strikesMap(r, cond));
     page.addHeatMap(rmseMap(r, cond));
   }

@@ -192,15 +192,14 @@ std::string formatRobustness(const RobustnessResult& r) {
   s += "Each entry: mean all-RMSE of the finished flights [cm], '(k✕)' when k of them struck, "
        "'struck' when all did.\n";
   for (const auto& cond : r.conditions) {
-    s += fmt::format("\n{:.2f} m / {:g} m/s (exp {}'s lemniscate)\n", cond.height_m,
-                     cond.speed_mps, cond.experiment);
+    s += fmt::format("\n{:.2f} m / {:g} m/s ({})\n", cond.height_m(), cond.speed_mps(), cond.describe());
     s += fmt::format("  {:<22}", "case");
     for (const auto& c : r.controllers) s += fmt::format(" {:>17}", c);
     s += "\n";
     for (const auto& p : r.cases) {
       s += fmt::format("  {:<22}", p.name);
       for (const auto& c : r.controllers) {
-        const SuiteCell* cell = r.cell(p.name, c, cond.height_m);
+        const SuiteCell* cell = r.cell(p.name, c, cond.height_m());
         std::string entry = "-";
         if (cell != nullptr) {
           const double rmse = cell->meanFinished(&SuiteFlight::rmse_all_cm);

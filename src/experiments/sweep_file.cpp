@@ -110,7 +110,10 @@ Perturbation readFault(io::MapReader& m, FaultCase& fault) {
     default_name.replace(at, 1, " per ");
   }
   p.name = m.has("name") ? m.text("name") : default_name;
-  if (m.has("name")) checkName(m, "name", p.name);
+  if (m.has("name")) {
+    checkName(m, "name", p.name);
+    fault.name = p.name;  // the fault suite's name for the case too
+  }
   m.rejectUnknownKeys();
   return p;
 }

@@ -9,6 +9,7 @@
 #include "geaware/control/controller_params.hpp"
 #include "geaware/experiments/fault_suite.hpp"
 #include "geaware/experiments/flight.hpp"
+#include "geaware/experiments/table_one.hpp"
 #include "geaware/io/vehicle_file.hpp"
 #include "test_scenarios.hpp"
 
@@ -121,7 +122,14 @@ TEST(FaultSuite, RunsAndReportsEachCaseAgainstItsBaseline) {
     if (c.name == "none" || c.name == "mocap 0.5s" || c.name == "motor stop") cases.push_back(c);
   }
   o.cases = cases;
-  o.conditions = {{1, 1.0, 1.0}};
+  traj::LemniscateParams at_1m = lemniscateFor(tableOneExperiment(1));
+  at_1m.height_m = 1.0;
+  o.conditions = {suiteCondition(at_1m, "lem-1m-1mps")};
+  for (const char* name : {"indi:none", "model:model_indi", "recommended"}) {
+    control::ControllerParams p;
+    ASSERT_TRUE(control::parseConfiguration(name, p));
+    o.controllers.push_back({control::configurationName(p), p});
+  }
   o.seeds = 1;
   o.jobs = 2;
   const FaultSuiteResult r = runFaultSuite(o);

@@ -16,6 +16,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "geaware/control/controller_params.hpp"
+#include "geaware/experiments/table_one.hpp"
 #include "geaware/io/vehicle_file.hpp"
 #include "geaware/model/vehicle_schema.hpp"
 
@@ -197,17 +199,40 @@ TEST(RobustnessCells, MagnitudesAreTheIssues) {
   EXPECT_THROW(applyPerturbation(robustnessCells()[1], no_truth), std::invalid_argument);
 }
 
-TEST(RobustnessControllers, TableIPairsIndiIndiAndRecommended) {
-  std::vector<std::string> names;
-  for (const auto& c : robustnessControllers()) names.push_back(c.name);
-  EXPECT_EQ(names, (std::vector<std::string>{"none:none", "indi:none", "neural:none", "model:none",
-                                             "model:model_indi", "indi:indi", "recommended"}));
-  const auto cond = robustnessConditions();
-  ASSERT_EQ(cond.size(), 2u);
-  EXPECT_EQ(cond[0].height_m, 0.12);
-  EXPECT_EQ(cond[0].speed_mps, 1.0);
-  EXPECT_EQ(cond[1].height_m, 0.18);
-  EXPECT_EQ(cond[1].speed_mps, 3.0);
+TEST(SuiteCondition, NamesTheTableIRowOfItsShapeAtAnyHeightAndSpeed) {
+  // The text and the report call a height/speed by the Table I row whose lemniscate it flies.
+  const SuiteCondition exp1 = suiteCondition(lemniscateFor(tableOneExperiment(1)), "lem-0.12m-1mps");
+  EXPECT_EQ(exp1.experiment, 1);  // exps 1–5 share the shape: the first of them
+  EXPECT_EQ(exp1.height_m(), 0.12);
+  EXPECT_EQ(exp1.speed_mps(), 1.0);
+  EXPECT_EQ(exp1.describe(), "exp 1's lemniscate");
+  EXPECT_EQ(suiteCondition(lemniscateFor(tableOneExperiment(7))).experiment, 6);
+  EXPECT_EQ(suiteCondition(lemniscateFor(tableOneExperiment(8))).experiment, 8);
+  traj::LemniscateParams high = lemniscateFor(tableOneExperiment(1));
+  high.height_m = 1.0;  // the fault campaign's second height: still exp 1's lemniscate
+  high.peak_speed_mps = 2.0;
+  EXPECT_EQ(suiteCondition(high).experiment, 1);
+  EXPECT_EQ(suiteCondition(high).lemniscate.height_m, 1.0);
+  // Any other part of the shape makes it no row's: named by the sweep file's scenario.
+  for (auto change : {+[](traj::LemniscateParams& p) { p.half_extent_y_m = 0.9; },
+                      +[](traj::LemniscateParams& p) { p.laps = 2; },
+                      +[](traj::LemniscateParams& p) { p.ramp_time_s = 1.0; },
+                      +[](traj::LemniscateParams& p) { p.height_swing_m = 0.1; },
+                      +[](traj::LemniscateParams& p) { p.centre_xy_m.x() = 0.5; },
+                      +[](traj::LemniscateParams& p) { p.yaw_rad = 0.3; }}) {
+    traj::LemniscateParams other = lemniscateFor(tableOneExperiment(1));
+    change(other);
+    const SuiteCondition c = suiteCondition(other, "wide");
+    EXPECT_EQ(c.experiment, 0);
+    EXPECT_EQ(c.describe(), "lemniscate wide");
+  }
+}
+
+/// A configuration by the name a sweep file gives it.
+SuiteController controllerNamed(const std::string& name) {
+  control::ControllerParams p;
+  EXPECT_TRUE(control::parseConfiguration(name, p)) << name;
+  return {control::configurationName(p), p};
 }
 
 RobustnessOptions small(int jobs) {
@@ -217,9 +242,8 @@ RobustnessOptions small(int jobs) {
   o.jobs = jobs;
   const auto all = robustnessCells();
   o.cells = {all[0], all[4]};  // none, mass+10%
-  o.conditions = {robustnessConditions()[0]};
-  const auto controllers = robustnessControllers();
-  o.controllers = {controllers[4], controllers[6]};  // model:model_indi, recommended
+  o.conditions = {suiteCondition(lemniscateFor(tableOneExperiment(1)), "lem-0.12m-1mps")};
+  o.controllers = {controllerNamed("model:model_indi"), controllerNamed("recommended")};
   return o;
 }
 
@@ -272,7 +296,7 @@ TEST(RobustnessRun, IdenticalOnOneAndTwoThreads) {
 TEST(RobustnessRun, ALawFamilyRecalibratesInItsOwnWorld) {
   RobustnessOptions o = small(0);
   o.cells = {robustnessCells()[14]};  // law:cheeseman_bennett
-  o.controllers = {robustnessControllers()[1]};  // indi:none
+  o.controllers = {controllerNamed("indi:none")};
   const RobustnessResult r = runRobustness(o);
   ASSERT_EQ(r.calibrations.size(), 2u);
   EXPECT_EQ(r.calibrations[1].world, "law:cheeseman_bennett");
@@ -337,7 +361,7 @@ TEST(RobustnessSummary, AllStruckCellsAreNullAndTheChecksReportWhatTheySee) {
   RobustnessResult r;
   r.cases = {robustnessCells()[0], robustnessCells()[4]};
   r.controllers = {"indi:none", "model:model_indi", "recommended"};
-  r.conditions = {robustnessConditions()[0]};
+  r.conditions = {suiteCondition(lemniscateFor(tableOneExperiment(1)))};
   r.seeds = {1, 2};
   r.recommended = "model:model_indi";
   r.cells = {

@@ -100,6 +100,22 @@ string(FIND "${out}" "Beyond suite (${prefix}/share/geaware/config/sweeps/beyond
 if(NOT rc EQUAL 0 OR at EQUAL -1)
   message(FATAL_ERROR "installed geaware bench --suite beyond (${rc}) did not fly the installed sweep file:\n${out}\n${err}")
 endif()
+# So do `--suite robustness` and `--suite faults` (their grids are their sweep files): the run's
+# provenance names the installed file as its input.
+foreach(suite robustness faults)
+  set(no_cache)
+  if(suite STREQUAL "robustness")
+    set(no_cache --no-cache)
+  endif()
+  execute_process(COMMAND ${prefix}/bin/geaware bench --suite ${suite} --cases none --controllers recommended
+                          --seeds 1 ${no_cache} --quiet --json -
+                  WORKING_DIRECTORY ${WORK_DIR}/elsewhere RESULT_VARIABLE rc
+                  OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  string(FIND "${out}" "\"path\": \"${prefix}/share/geaware/config/sweeps/${suite}.yaml\"" at)
+  if(NOT rc EQUAL 0 OR at EQUAL -1)
+    message(FATAL_ERROR "installed geaware bench --suite ${suite} (${rc}) did not fly the installed sweep file:\n${out}\n${err}")
+  endif()
+endforeach()
 
 # Built with the Python module (GEAWARE_PYTHON): the installed package imports from another
 # directory and loads the installed vehicle file.

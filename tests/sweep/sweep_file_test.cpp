@@ -14,8 +14,6 @@
 #include "geaware/experiments/fault_suite.hpp"
 #include "geaware/experiments/robustness.hpp"
 #include "geaware/experiments/sweep.hpp"
-#include "geaware/experiments/table_one.hpp"
-#include "geaware/traj/lemniscate.hpp"
 #include "geaware/io/config_error.hpp"
 #include "sweep_support.hpp"
 
@@ -168,68 +166,18 @@ TEST(SweepFile, ListSizesAndTheProductAreBoundedBeforeAnyWork) {
                 "controllers", "has 101 items, expected at most 100");
 }
 
-TEST(SweepFile, TheShippedRobustnessSweepIsTheRobustnessSuite) {
-  const SweepSpec s = geaware::experiments::loadSweepFile(sourceDir() / "config/sweeps/robustness.yaml");
-  const auto cells = geaware::experiments::robustnessCells();
-  const auto controllers = geaware::experiments::robustnessControllers();
-  const auto conditions = geaware::experiments::robustnessConditions();
-  ASSERT_EQ(s.cases.size(), cells.size());
-  for (std::size_t i = 0; i < cells.size(); ++i) {
-    EXPECT_EQ(s.cases[i].name, cells[i].name);
-    EXPECT_EQ(s.cases[i].kind, cells[i].kind);
-    EXPECT_EQ(s.cases[i].value, cells[i].value);
-    EXPECT_EQ(s.cases[i].law, cells[i].law);
-  }
-  ASSERT_EQ(s.controllers.size(), controllers.size());
-  for (std::size_t i = 0; i < controllers.size(); ++i) EXPECT_EQ(s.controllers[i].name, controllers[i].name);
-  ASSERT_EQ(s.scenarios.size(), conditions.size());
-  for (std::size_t i = 0; i < conditions.size(); ++i) {
-    const auto* l = dynamic_cast<const geaware::traj::Lemniscate*>(s.scenarios[i].trajectory.get());
-    ASSERT_NE(l, nullptr);
-    const auto want = geaware::experiments::lemniscateFor(
-        geaware::experiments::tableOneExperiment(conditions[i].experiment));
-    EXPECT_EQ(l->params().height_m, want.height_m);
-    EXPECT_EQ(l->params().peak_speed_mps, want.peak_speed_mps);
-    EXPECT_EQ(l->params().half_extent_x_m, want.half_extent_x_m);
-    EXPECT_EQ(l->params().half_extent_y_m, want.half_extent_y_m);
-    EXPECT_EQ(l->params().laps, want.laps);
-    EXPECT_EQ(l->params().ramp_time_s, want.ramp_time_s);
-  }
-  EXPECT_TRUE(s.calibrate);
-  EXPECT_EQ(s.start_hover_s, 3.0);
-  EXPECT_EQ(s.seed_count, 5u);
-  // The suite's cells × seeds: 16 × 7 × 2 × 5.
-  EXPECT_EQ(s.flights(), cells.size() * controllers.size() * conditions.size() * 5);
-  EXPECT_EQ(s.flights(), 1120u);
-}
-
-TEST(SweepFile, TheShippedFaultSweepIsTheFaultSuite) {
-  const SweepSpec s = geaware::experiments::loadSweepFile(sourceDir() / "config/sweeps/faults.yaml");
-  const auto cases = geaware::experiments::faultCases();
-  const auto controllers = geaware::experiments::faultControllers();
-  const auto conditions = geaware::experiments::faultConditions();
-  ASSERT_EQ(s.cases.size(), cases.size());
-  ASSERT_EQ(s.case_faults.size(), cases.size());
-  for (std::size_t i = 0; i < cases.size(); ++i) {
-    EXPECT_EQ(s.case_faults[i].name, cases[i].name);
-    EXPECT_EQ(s.case_faults[i].faults.size(), cases[i].faults.size());
-    EXPECT_EQ(s.cases[i].kind, geaware::experiments::PerturbationKind::kNone);
-    EXPECT_EQ(s.cases[i].name.find('/'), std::string::npos);
-  }
-  EXPECT_EQ(s.cases[9].name, "gyro bias 2° per s");
-  ASSERT_EQ(s.controllers.size(), controllers.size());
-  for (std::size_t i = 0; i < controllers.size(); ++i) EXPECT_EQ(s.controllers[i].name, controllers[i].name);
-  ASSERT_EQ(s.scenarios.size(), conditions.size());
-  for (std::size_t i = 0; i < conditions.size(); ++i) {
-    const auto* l = dynamic_cast<const geaware::traj::Lemniscate*>(s.scenarios[i].trajectory.get());
-    ASSERT_NE(l, nullptr);
-    EXPECT_EQ(l->params().height_m, conditions[i].height_m);
-    EXPECT_EQ(l->params().peak_speed_mps, conditions[i].speed_mps);
-  }
-  EXPECT_EQ(s.seed_count, 3u);
-  EXPECT_EQ(s.flights(), 13u * 3 * 2 * 3);
-  // A fault name that is not the suite's is refused at its line.
+TEST(SweepFile, AFaultItemNamesACaseOfTheFaultSuite) {
+  // (The shipped files are the suites' grids: suite_sweep_test.cpp.)
   const std::string t = slurp(sourceDir() / "config/sweeps/faults.yaml");
+  const SweepSpec s = parse(t);
+  EXPECT_EQ(s.cases[9].name, "gyro bias 2° per s");  // a key's name cannot hold '/'
+  EXPECT_EQ(s.case_faults[9].name, "gyro bias 2°/s");  // the suite's name
+  // A `name` names the suite's case too.
+  const SweepSpec named = parse(replaced(t, "fault: motor 50%", "{fault: motor 50%, name: half}"));
+  EXPECT_EQ(named.cases[2].name, "half");
+  EXPECT_EQ(named.case_faults[2].name, "half");
+  EXPECT_EQ(named.case_faults[2].faults.size(), 1u);
+  // A fault name that is not the suite's is refused at its line.
   expectProblem(replaced(t, "fault: motor 50%", "fault: motor 40%"), lineOf(t, "motor 50%"), "perturbations[2].fault",
                 "expected a case of the fault suite");
 }

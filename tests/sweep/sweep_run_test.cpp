@@ -20,6 +20,7 @@
 #include "geaware/experiments/fault_suite.hpp"
 #include "geaware/experiments/flight.hpp"
 #include "geaware/experiments/robustness.hpp"
+#include "geaware/experiments/suite_sweep.hpp"
 #include "geaware/experiments/sweep.hpp"
 #include "geaware/experiments/world_setup.hpp"
 #include "geaware/io/config_error.hpp"
@@ -210,19 +211,14 @@ TEST(SweepRun, ACalibratedSweepFliesTheRobustnessSuitesFlightBitForBit) {
   const auto record = geaware::io::Json::parse(
       ex::runSweepFlight(s, "case=mass+10%/ctl=recommended/scn=lem-0.12m-1mps/seed=2"));
 
-  ex::RobustnessOptions o;
-  o.vehicle = geaware::io::builtinVehicle();
-  o.world = ex::defaultWorld(o.vehicle, true, "");
-  o.cells = {ex::robustnessCells().at(4)};
-  ASSERT_EQ(o.cells[0].name, "mass+10%");
-  o.controllers = {ex::robustnessControllers().back()};
-  ASSERT_EQ(o.controllers[0].name, "recommended");
-  o.conditions = {ex::robustnessConditions().at(0)};
-  o.seeds = 1;
-  o.first_seed = 2;
+  // The suite flown from the same file (as `bench --suite robustness --sweep cal.yaml`).
+  ex::RobustnessOptions o = ex::robustnessOptionsOf(s);
   o.jobs = 1;
   const ex::RobustnessResult r = ex::runRobustness(o);
   ASSERT_EQ(r.cells.size(), 1u);
+  EXPECT_EQ(r.cells[0].case_name, "mass+10%");
+  EXPECT_EQ(r.cells[0].controller, "recommended");
+  EXPECT_EQ(r.seeds, std::vector<std::uint64_t>{2});
   const ex::SuiteFlight& f = r.cells[0].flights.at(0);
   EXPECT_EQ(record["struck"], f.struck);
   EXPECT_EQ(record["rmse_all_cm"].get<double>(), f.rmse_all_cm);
@@ -237,25 +233,20 @@ TEST(SweepRun, AFaultKeyFliesTheFaultSuitesFlightBitForBit) {
   // `fault: motor 80%` flies what `geaware bench --suite faults` flies for that cell and seed.
   const std::string text =
       "vehicle: builtin\nworld: default\ncalibrate: true\n"
-      "perturbations: [{fault: motor 80%}]\ncontrollers: [recommended]\n"
+      "perturbations: [{fault: none}, {fault: motor 80%}]\ncontrollers: [recommended]\n"
       "scenarios: [{type: lemniscate, height_m: 0.12, speed_mps: 1.0, half_extent_x_m: 1.5, half_extent_y_m: 0.8}]\n"
       "seeds: {first: 1, count: 1}\n";
   const ex::SweepSpec s = ex::parseSweepYaml(text, "fault.yaml", sourceDir());
   const auto record = geaware::io::Json::parse(
       ex::runSweepFlight(s, "case=motor 80%/ctl=recommended/scn=lem-0.12m-1mps/seed=1"));
 
-  ex::FaultSuiteOptions o;
-  o.vehicle = geaware::io::builtinVehicle();
-  o.world = ex::defaultWorld(o.vehicle, true, "");
-  o.cases = {ex::faultCases().at(0), ex::faultCases().at(1)};
-  ASSERT_EQ(o.cases[1].name, "motor 80%");
-  o.controllers = {ex::faultControllers().back()};
-  ASSERT_EQ(o.controllers[0].name, "recommended");
-  o.conditions = {ex::faultConditions().at(0)};
-  o.seeds = 1;
+  // The campaign flown from the same file (as `bench --suite faults --sweep fault.yaml`).
+  ex::FaultSuiteOptions o = ex::faultSuiteOptionsOf(s);
   o.jobs = 1;
   const ex::FaultSuiteResult r = ex::runFaultSuite(o);
   ASSERT_EQ(r.cells.size(), 2u);
+  EXPECT_EQ(r.cells[1].cell.case_name, "motor 80%");
+  EXPECT_EQ(r.cells[1].cell.controller, "recommended");
   const ex::FaultFlight& f = r.cells[1].flights.at(0);
   EXPECT_EQ(record["struck"], f.flight.struck);
   EXPECT_EQ(record["terminated"], f.terminated);

@@ -7,9 +7,10 @@
 // a dead ranger, a kick that clips the IMU, a gyro bias step, a battery sag, a 10 % mass error,
 // a 2 m/s gust: experiments/faults.hpp), at 0.12 m and 1 m on exp 1's lemniscate at 1 m/s, for
 // the paper's configuration (exp 5's model:model_indi), INDI (exp 2's indi:none) and
-// `recommended`. Each cell tells what happened: finished (and how much worse than the same
-// flight without the fault, seed by seed), struck, or terminated by the controller (a flagged,
-// deliberate motor cut) — and which flags the controller and the estimator raised.
+// `recommended`: the grid of the suite's sweep file, config/sweeps/faults.yaml. Each cell tells
+// what happened: finished (and how much worse than the same flight without the fault, seed by
+// seed), struck, or terminated by the controller (a flagged, deliberate motor cut) — and which
+// flags the controller and the estimator raised.
 //
 // The JSON is the suite schema of the robustness suite ({"geaware_version", "suite": "faults",
 // "recommended", "cells": [{"case", "controller", "height_m", "speed_mps", "seeds", "flights",
@@ -36,20 +37,21 @@ struct FaultCase {
   bool low_imu_ranges = false;
 };
 
-/// "none" first, then the cases in its order (docs/reliability.md has the table).
+/// The cases a sweep file names (`- fault: motor 80%`, docs/sweeps.md): "none" first, then the
+/// issue's cases in its order (docs/reliability.md has the table). The suite's grid (which of
+/// them it flies, with which controllers, heights and seeds) is its sweep file's,
+/// config/sweeps/faults.yaml (experiments/suite_sweep.hpp).
 [[nodiscard]] std::vector<FaultCase> faultCases();
-/// exp 5's model:model_indi, exp 2's indi:none, recommended.
-[[nodiscard]] std::vector<SuiteController> faultControllers();
-/// 0.12 m and 1.0 m, exp 1's lemniscate at 1 m/s.
-[[nodiscard]] std::vector<SuiteCondition> faultConditions();
 
 struct FaultSuiteOptions {
   model::VehicleParams vehicle;
   std::optional<sim::World> world;  ///< empty: sim::idealWorld(vehicle)
-  std::vector<FaultCase> cases = faultCases();
-  std::vector<SuiteController> controllers = faultControllers();
-  std::vector<SuiteCondition> conditions = faultConditions();
-  int seeds = 3;
+  /// The grid: cases ("none" first: the baseline), configurations, heights/speeds (at distinct
+  /// heights) and seeds; the suite's own is its sweep file's (faultSuiteOptionsOf).
+  std::vector<FaultCase> cases;
+  std::vector<SuiteController> controllers;
+  std::vector<SuiteCondition> conditions;
+  int seeds = 5;
   std::uint64_t first_seed = 1;
   int jobs = 0;
   double start_hover_s = 3.0;  ///< [s]

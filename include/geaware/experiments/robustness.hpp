@@ -10,6 +10,8 @@
 // (and the training) in that world. Each cell is flown with every Table I configuration,
 // indi:indi and `recommended`, at 0.12 m / 1 m/s (exps 1–5's lemniscate) and 0.18 m / 3 m/s
 // (exps 6–7's), over seeds, on the flight pool (results identical whatever the thread count).
+// That grid is the suite's sweep file's, config/sweeps/robustness.yaml (robustnessOptionsOf,
+// experiments/suite_sweep.hpp): another sweep file flies another grid.
 //
 // The result is a list of suite cells (case × controller × height/speed), the JSON schema that
 // every suite shares (suiteJson): {"geaware_version", "suite", "recommended", "cells": [{"case",
@@ -35,6 +37,7 @@
 #include "geaware/report/page.hpp"
 #include "geaware/sim/rotor_aerodynamics.hpp"
 #include "geaware/sim/world.hpp"
+#include "geaware/traj/lemniscate.hpp"
 
 namespace geaware::experiments {
 
@@ -67,9 +70,11 @@ struct Perturbation {
   [[nodiscard]] std::string meaning() const;
 };
 
-/// The suite's cells, "none" first: mass −10, −5, +5, +10 %; k_T ±5 %; motor spread ±5 %; CoG
-/// 1 cm; in-flight cushion 0.5×, 0.8×, 1.2×; mocap latency +20 ms; gusts 0.3 m/s; per-rotor
-/// Cheeseman–Bennett; per-rotor Sanchez-Cuevas.
+/// The named cases a sweep file lists by name (`- name: mass+10%`, docs/sweeps.md), "none" first:
+/// mass −10, −5, +5, +10 %; k_T ±5 %; motor spread ±5 %; CoG 1 cm; in-flight cushion 0.5×, 0.8×,
+/// 1.2×; mocap latency +20 ms; gusts 0.3 m/s; per-rotor Cheeseman–Bennett; per-rotor
+/// Sanchez-Cuevas. The suite's grid (which of them it flies, with which controllers, heights and
+/// seeds) is its sweep file's, config/sweeps/robustness.yaml (experiments/suite_sweep.hpp).
 [[nodiscard]] std::vector<Perturbation> robustnessCells();
 
 /// Changes the world of `s` (its truth, sensors and disturbances; never its vehicle, controller
@@ -82,19 +87,23 @@ struct SuiteController {
   control::ControllerParams params;
 };
 
-/// The distinct ACC:TORQUE pairs of Table I (exps 1–8, in order of first appearance),
-/// indi:indi, then `recommended`.
-[[nodiscard]] std::vector<SuiteController> robustnessControllers();
-
-/// A height and speed of the suite: the lemniscate of a Table I row.
+/// A height and speed of a suite: a lemniscate flown over flat ground (a scenario of the suite's
+/// sweep file).
 struct SuiteCondition {
-  int experiment = 1;  ///< Table I row whose lemniscate is flown
-  double height_m = 0.0;
-  double speed_mps = 0.0;
+  std::string name;                   ///< the scenario's name in the sweep file, e.g. "lem-0.12m-1mps"
+  traj::LemniscateParams lemniscate;  ///< the path flown
+  /// The Table I row whose lemniscate has this one's shape (extents, laps, ramps, centre, yaw;
+  /// at any height and speed), the first of them; 0: none.
+  int experiment = 0;
+
+  [[nodiscard]] double height_m() const noexcept { return lemniscate.height_m; }
+  [[nodiscard]] double speed_mps() const noexcept { return lemniscate.peak_speed_mps; }
+  /// "exp 1's lemniscate", or "lemniscate NAME" when it is no Table I row's shape.
+  [[nodiscard]] std::string describe() const;
 };
 
-/// 0.12 m / 1 m/s (exp 1's lemniscate) and 0.18 m / 3 m/s (exp 6's).
-[[nodiscard]] std::vector<SuiteCondition> robustnessConditions();
+/// The condition that flies `lemniscate`, with its Table I row found by shape.
+[[nodiscard]] SuiteCondition suiteCondition(const traj::LemniscateParams& lemniscate, std::string name = {});
 
 // --- Running it ------------------------------------------------------------------------------
 
@@ -104,9 +113,11 @@ struct RobustnessOptions {
   /// The unperturbed world (truth, per-flight variation, sensors, disturbances; a truth file,
   /// docs/truth-file.md); empty: sim::idealWorld(vehicle).
   std::optional<sim::World> world;
-  std::vector<Perturbation> cells = robustnessCells();
-  std::vector<SuiteController> controllers = robustnessControllers();
-  std::vector<SuiteCondition> conditions = robustnessConditions();
+  /// The grid: cases, configurations, heights/speeds (at distinct heights) and seeds; the
+  /// suite's own is its sweep file's (robustnessOptionsOf, experiments/suite_sweep.hpp).
+  std::vector<Perturbation> cells;
+  std::vector<SuiteController> controllers;
+  std::vector<SuiteCondition> conditions;
   int seeds = 5;
   std::uint64_t first_seed = 1;
   int jobs = 0;                     ///< flight threads; 0: the hardware's

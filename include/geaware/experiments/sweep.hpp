@@ -62,7 +62,8 @@ struct SweepSpec {
   double max_sim_s = 3600.0;
   std::vector<Perturbation> cases;
   /// Aligned with `cases`: what a `fault:` item breaks (a case of the fault suite: faults
-  /// mid-flight, a mass error, the IMU's ranges); an empty FaultCase for the others.
+  /// mid-flight, a mass error, the IMU's ranges; named as the item's `name` when it gives one);
+  /// an empty FaultCase for the others.
   std::vector<FaultCase> case_faults;
   std::vector<SuiteController> controllers;
   std::optional<control::ControllerParams> controller_values;  ///< controller_params file
