@@ -52,8 +52,8 @@ void Controller::learnGroundEffect(const ControllerInput& in) noexcept {
   const double cos_tilt = in.estimate.q_WB.normalized().toRotationMatrix()(2, 2);
   const double tilt = std::acos(std::clamp(cos_tilt, -1.0, 1.0));
   const double f_g = in.external_accel_W.z() / thrust_acc;
-  if (learner_->update(in.height_m, f_g, tilt, in.estimate.v_W.head<2>().norm(), in.estimate.v_W.z()) ==
-      LearnerSample::kUsed) {
+  if (learner_->update(in.height_m, f_g, tilt, in.estimate.v_W.head<2>().norm(), in.estimate.v_W.z(),
+                       mem_.fade_est_) == LearnerSample::kUsed) {
     ground_effect_.setThrustTableValues(learner_->values());
     reference_map_.setThrustTableValues(learner_->values());
   }

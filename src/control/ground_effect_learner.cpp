@@ -50,6 +50,7 @@ std::vector<model::FieldError> GroundEffectLearnerParams::validate() const {
   c.range("max_abs_sample", max_abs_sample, 0.0, 100.0, kExclusive);
   c.range("max_tilt_rad", max_tilt_rad, 0.0, 1.5, kExclusive, "rad");
   c.range("max_speed_mps", max_speed_mps, 0.0, 100.0, kExclusive, "m/s");
+  c.range("min_fade", min_fade, 0.0, 1.0, kExclusive);
   c.range("max_climb_mps", max_climb_mps, 0.0, 100.0, kExclusive, "m/s");
   c.range("learned_samples", learned_samples, 0.0, 1e9, kInclusive);
   if (c.range("far_height_m", far_height_m, 0.0, 1e3, kExclusive, "m") && !knots_m.empty() &&
@@ -93,6 +94,7 @@ GroundEffectLearner::GroundEffectLearner(const GroundEffectLearnerParams& params
       max_abs_(params.max_abs_sample),
       max_tilt_(params.max_tilt_rad),
       max_speed_(params.max_speed_mps),
+      min_fade_(params.min_fade),
       max_climb_(params.max_climb_mps),
       learned_samples_(params.learned_samples),
       far_height_m_(params.far_height_m),
@@ -110,22 +112,23 @@ GroundEffectLearner::GroundEffectLearner(const GroundEffectLearnerParams& params
 }
 
 LearnerSample GroundEffectLearner::update(double h_m, double f_g, double tilt_rad, double speed_mps,
-                                          double climb_mps) noexcept {
+                                          double climb_mps, double fade) noexcept {
   if (!(std::isfinite(h_m) && std::isfinite(f_g) && std::isfinite(tilt_rad) &&
-        std::isfinite(speed_mps) && std::isfinite(climb_mps))) {
+        std::isfinite(speed_mps) && std::isfinite(climb_mps) && std::isfinite(fade))) {
     return LearnerSample::kNonFinite;
   }
   const bool far = h_m >= far_height_m_;
   if (!far && (h_m < h_[0] || h_m > h_[n_ - 1])) return LearnerSample::kOutsideKnots;
   if (std::abs(f_g) > max_abs_) return LearnerSample::kOutlier;
   if (std::abs(tilt_rad) > max_tilt_) return LearnerSample::kTilted;
-  if (std::abs(speed_mps) > max_speed_) return LearnerSample::kFast;
+  // Without a fade model the curve is learned at low speed only; with one, down to min_fade.
+  if (fade == 1.0 ? std::abs(speed_mps) > max_speed_ : !(fade >= min_fade_)) return LearnerSample::kFast;
   if (std::abs(climb_mps) > max_climb_) return LearnerSample::kClimbing;
   if (far) {
     // y = θ_N·(h_N/h)² + b: the curve's inverse-square tail (as model::HeightTable continues a
     // table) plus the offset.
     const double r = h_[n_ - 1] / h_m;
-    const double r2 = r * r;
+    const double r2 = fade * (r * r);
     Far& s = far_;
     s.rr = far_lambda_ * s.rr + w_ * r2 * r2;
     s.rb = far_lambda_ * s.rb + w_ * r2;
@@ -140,8 +143,8 @@ LearnerSample GroundEffectLearner::update(double h_m, double f_g, double tilt_ra
   // the last interval).
   const std::size_t j = knotInterval(h_.data(), n_, h_m);
   const double t = (h_m - h_[j]) / (h_[j + 1] - h_[j]);
-  const double p0 = 1.0 - t;
-  const double p1 = t;
+  const double p0 = fade * (1.0 - t);
+  const double p1 = fade * t;
   Interval& s = stats_[j];
   s.a00 = lambda_ * s.a00 + w_ * p0 * p0;
   s.a01 = lambda_ * s.a01 + w_ * p0 * p1;

@@ -48,7 +48,11 @@ struct GroundEffectLearnerParams {
   double max_ratio = 1.5;          ///< upper bound on F_G [-]
   double max_abs_sample = 2.0;     ///< |F̃_G| above this is an outlier, not used [-]
   double max_tilt_rad = 0.35;      ///< samples at a larger tilt are not used [rad]
-  double max_speed_mps = 1.5;      ///< nor at a larger horizontal speed (forward-flight fade) [m/s]
+  /// nor at a larger horizontal speed (the forward-flight fade), unless the fade is modelled [m/s]
+  double max_speed_mps = 1.5;
+  /// With the fade modelled (update()'s `fade` below 1), samples are used down to this fade
+  /// instead, V ≤ v_i at 0.5 [-].
+  double min_fade = 0.5;
   double max_climb_mps = 0.5;      ///< nor at a larger vertical speed [m/s]
   /// A knot counts as learned once its data information reaches this many samples' worth [-].
   double learned_samples = 200.0;
@@ -88,9 +92,11 @@ class GroundEffectLearner {
   GroundEffectLearner(const GroundEffectLearnerParams& params, const std::vector<double>& prior_values);
 
   /// One flight estimate: F̃_G at height h_m, with the tilt, horizontal and vertical speeds that
-  /// gate it. No allocation.
-  LearnerSample update(double h_m, double f_g, double tilt_rad, double speed_mps,
-                       double climb_mps) noexcept;
+  /// gate it. `fade`: the model's forward-flight fade at this speed (model::GroundEffectModel::
+  /// forwardFade; exactly 1 without one): the sample is then fade·F_G(h) + offset, and the
+  /// speed gate becomes fade ≥ min_fade. No allocation.
+  LearnerSample update(double h_m, double f_g, double tilt_rad, double speed_mps, double climb_mps,
+                       double fade = 1.0) noexcept;
 
   [[nodiscard]] std::size_t knots() const noexcept { return n_; }
   [[nodiscard]] double knot_m(std::size_t k) const noexcept { return h_[k]; }
@@ -125,7 +131,7 @@ class GroundEffectLearner {
   std::array<double, kMaxKnots> prior_{};
   std::array<double, kMaxKnots> theta_{};
   std::array<Interval, kMaxKnots> stats_{};  // interval j between knots j and j+1
-  double lambda_, w_, prior_info_, min_, max_, max_abs_, max_tilt_, max_speed_, max_climb_;
+  double lambda_, w_, prior_info_, min_, max_, max_abs_, max_tilt_, max_speed_, min_fade_, max_climb_;
   double learned_samples_, far_height_m_, far_lambda_;
   bool monotone_;
   double offset_prior_info_;
