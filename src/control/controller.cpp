@@ -325,8 +325,7 @@ ControllerOutput Controller::update(const ControllerInput& in) noexcept {
   }
   if ((out.flags & kFlagReferenceInvalid) != 0) mem_.last_flags_ = out.flags;
   monitorMotors(in, out);
-  if (learner_) learnGroundEffect(in);
-  if (leveling_learner_) learnLeveling(in, out.tau_hat_B);
+  if (learner_) learnInFlight(in, out.tau_hat_B);
   return out;
 }
 

@@ -9,6 +9,9 @@
 #   STDERR_LINE_REGEX   the same for stderr
 #   STDOUT_CONTAINS     literal substrings of stdout
 #   STDERR_CONTAINS     literal substrings of stderr
+#   STDOUT_JSON         PATH=VALUE items: stdout parsed as JSON (CMake's string(JSON)), the
+#                       member or element at PATH ('/'-separated keys and array indices) equals
+#                       VALUE: the same text, or the same number (0.3 matches 0.29999999999999999)
 # Every failed check is reported (with both outputs) before the script fails, so one run says
 # everything that is wrong.
 
@@ -102,6 +105,28 @@ check_line_regexes(stdout "${out}" "${STDOUT_LINE_REGEX}")
 check_line_regexes(stderr "${err}" "${STDERR_LINE_REGEX}")
 check_contains(stdout "${out}" "${STDOUT_CONTAINS}")
 check_contains(stderr "${err}" "${STDERR_CONTAINS}")
+
+# Each PATH=VALUE of `queries` holds in the JSON document `text`.
+function(check_json stream text queries)
+  foreach(query IN LISTS queries)
+    string(FIND "${query}" "=" eq)
+    if(eq EQUAL -1)
+      message(FATAL_ERROR "run_expect.cmake: STDOUT_JSON item '${query}' is not PATH=VALUE")
+    endif()
+    string(SUBSTRING "${query}" 0 ${eq} path)
+    math(EXPR from "${eq} + 1")
+    string(SUBSTRING "${query}" ${from} -1 expected)
+    string(REPLACE "/" ";" keys "${path}")
+    string(JSON got ERROR_VARIABLE error GET "${text}" ${keys})
+    if(error)
+      list(APPEND failures "${stream} as JSON has no ${path}: ${error}")
+    elseif(NOT (got STREQUAL expected OR got EQUAL expected))
+      list(APPEND failures "${stream} as JSON has ${path} = '${got}', expected '${expected}'")
+    endif()
+  endforeach()
+  set(failures "${failures}" PARENT_SCOPE)
+endfunction()
+check_json(stdout "${out}" "${STDOUT_JSON}")
 
 if(failures)
   list(JOIN failures "\n  " report)

@@ -90,29 +90,22 @@ if(NOT pages)
   message(FATAL_ERROR "installed geaware fly --report wrote no page:\n${out}\n${err}")
 endif()
 
-# The installed command line's shipped suite: `bench --suite beyond` reads the sweep file
-# installed beside it, not the source tree's.
-execute_process(COMMAND ${prefix}/bin/geaware bench --suite beyond --cases landing --controllers recommended
-                        --seeds 1 --quiet
-                WORKING_DIRECTORY ${WORK_DIR}/elsewhere RESULT_VARIABLE rc
-                OUTPUT_VARIABLE out ERROR_VARIABLE err)
-string(FIND "${out}" "Beyond suite (${prefix}/share/geaware/config/sweeps/beyond.yaml)" at)
-if(NOT rc EQUAL 0 OR at EQUAL -1)
-  message(FATAL_ERROR "installed geaware bench --suite beyond (${rc}) did not fly the installed sweep file:\n${out}\n${err}")
-endif()
-# So do `--suite robustness` and `--suite faults` (their grids are their sweep files): the run's
+# The installed command line's shipped suites: `bench --suite beyond`, `robustness` and `faults`
+# read the sweep files installed beside it (their grids), not the source tree's; the run's
 # provenance names the installed file as its input.
-foreach(suite robustness faults)
-  set(no_cache)
-  if(suite STREQUAL "robustness")
-    set(no_cache --no-cache)
+foreach(suite beyond robustness faults)
+  set(flags --cases none)
+  if(suite STREQUAL "beyond")
+    set(flags --cases landing)
+  elseif(suite STREQUAL "robustness")
+    list(APPEND flags --no-cache)
   endif()
-  execute_process(COMMAND ${prefix}/bin/geaware bench --suite ${suite} --cases none --controllers recommended
-                          --seeds 1 ${no_cache} --quiet --json -
+  execute_process(COMMAND ${prefix}/bin/geaware bench --suite ${suite} ${flags} --controllers recommended
+                          --seeds 1 --quiet --json -
                   WORKING_DIRECTORY ${WORK_DIR}/elsewhere RESULT_VARIABLE rc
                   OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  string(FIND "${out}" "\"path\": \"${prefix}/share/geaware/config/sweeps/${suite}.yaml\"" at)
-  if(NOT rc EQUAL 0 OR at EQUAL -1)
+  string(JSON read ERROR_VARIABLE json_error GET "${out}" provenance inputs 0 path)
+  if(NOT rc EQUAL 0 OR NOT read STREQUAL "${prefix}/share/geaware/config/sweeps/${suite}.yaml")
     message(FATAL_ERROR "installed geaware bench --suite ${suite} (${rc}) did not fly the installed sweep file:\n${out}\n${err}")
   endif()
 endforeach()

@@ -179,12 +179,9 @@ class Controller {
   [[nodiscard]] ControllerOutput step(const ControllerInput& in) noexcept;
   /// The motor monitor after a finite step: flags a failed motor, terminates when it tipped.
   void monitorMotors(const ControllerInput& in, ControllerOutput& out) noexcept;
-  /// One sample for the in-flight F_G learner after a finite step; the models take the new
-  /// curve when it changes.
-  void learnGroundEffect(const ControllerInput& in) noexcept;
-  /// One sample for the leveling-scale learner, from this tick's torque-INDI quantities; the
-  /// models take the scale when it changes.
-  void learnLeveling(const ControllerInput& in, const Eigen::Vector3d& tau_hat_B) noexcept;
+  /// One sample for each in-flight learner (F_G and the leveling scale; learning on), after a
+  /// finite step whose τ̂_B is `tau_hat_B`; the models take what changes.
+  void learnInFlight(const ControllerInput& in, const Eigen::Vector3d& tau_hat_B) noexcept;
   /// The per-rotor speed loop's throttle corrections (zero when off).
   [[nodiscard]] Eigen::Vector4d rotorSpeedCorrection(const ControllerInput& in) noexcept;
 
