@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <span>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -75,55 +76,84 @@ double scaleFloor(const std::vector<double>& y) {
 
 namespace {
 
-/// The k-th smallest of v (0-based), the value std::nth_element puts at v[k]; v is reordered.
-/// On many values, the order statistics of an evenly spaced sample of 1024 of them bracket it in
-/// a window of about 1/8 of the values: one pass counts those below the window and copies those
-/// in it, and only the window is selected from (and when the bracket misses, all of v is).
-double kthSmallest(std::vector<double>& v, std::size_t k, std::vector<double>& window) {
+/// The k-th smallest of f(v[i]) (0-based) when a sample brackets it; false otherwise (the
+/// caller then selects from all values). On many values, the order statistics of an evenly
+/// spaced sample of 1024 of them bracket the k-th in a window of about 1/8 of the values: one
+/// pass counts those below the window and copies those in it, and only the window is selected
+/// from. The pass is branch-free (every value is written, the count advances only for those in
+/// the window): the window holds the same values in the same order as a pass with branches, so
+/// std::nth_element on it gives the same value whatever the values are (NaN and ties included).
+template <class F>
+bool selectInWindow(std::span<const double> v, std::size_t k, F f, std::vector<double>& window, double& out) {
   constexpr std::size_t kSample = 1024;
   constexpr std::ptrdiff_t kMargin = 64;  // sample ranks either side: ~4 standard deviations
   const std::size_t n = v.size();
-  if (n >= 8 * kSample) {
-    std::array<double, kSample> sample{};
-    const std::size_t stride = n / kSample;
-    for (std::size_t i = 0; i < kSample; ++i) sample[i] = v[i * stride];
-    std::sort(sample.begin(), sample.end());
-    const auto rank = static_cast<std::ptrdiff_t>(static_cast<double>(k) / static_cast<double>(n) * kSample);
-    constexpr double kUnbounded = std::numeric_limits<double>::infinity();
-    const double lo = rank - kMargin < 0 ? -kUnbounded : sample[static_cast<std::size_t>(rank - kMargin)];
-    const double hi = rank + kMargin >= static_cast<std::ptrdiff_t>(kSample) ? kUnbounded
-                                                                             : sample[static_cast<std::size_t>(rank + kMargin)];
-    std::size_t below = 0;
-    window.clear();
-    for (const double x : v) {
-      if (x < lo) {
-        ++below;
-      } else if (!(x > hi)) {
-        window.push_back(x);
-      }
-    }
-    if (below <= k && k < below + window.size()) {
-      const auto at = window.begin() + static_cast<std::ptrdiff_t>(k - below);
-      std::nth_element(window.begin(), at, window.end());
-      return *at;
-    }
+  if (n < 8 * kSample) return false;
+  std::array<double, kSample> sample{};
+  const std::size_t stride = n / kSample;
+  for (std::size_t i = 0; i < kSample; ++i) sample[i] = f(v[i * stride]);
+  std::sort(sample.begin(), sample.end());
+  const auto rank = static_cast<std::ptrdiff_t>(static_cast<double>(k) / static_cast<double>(n) * kSample);
+  constexpr double kUnbounded = std::numeric_limits<double>::infinity();
+  const double lo = rank - kMargin < 0 ? -kUnbounded : sample[static_cast<std::size_t>(rank - kMargin)];
+  const double hi = rank + kMargin >= static_cast<std::ptrdiff_t>(kSample) ? kUnbounded
+                                                                           : sample[static_cast<std::size_t>(rank + kMargin)];
+  if (window.size() < n) window.resize(n);
+  double* const w = window.data();
+  std::size_t below = 0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = f(v[i]);
+    const bool is_below = x < lo;
+    w[count] = x;
+    below += static_cast<std::size_t>(is_below);
+    count += static_cast<std::size_t>(!is_below && !(x > hi));
   }
-  const auto at = v.begin() + static_cast<std::ptrdiff_t>(k);
-  std::nth_element(v.begin(), at, v.end());
-  return *at;
+  if (below <= k && k < below + count) {
+    double* const at = w + (k - below);
+    std::nth_element(w, at, w + count);
+    out = *at;
+    return true;
+  }
+  return false;
 }
 
 }  // namespace
 
-double robustSigma(std::vector<double> v) {
+double RobustScale::kthSmallest(std::span<const double> v, std::size_t k) {
+  double out = 0.0;
+  if (selectInWindow(v, k, [](double x) { return x; }, window_, out)) return out;
+  values_.assign(v.begin(), v.end());
+  const auto at = values_.begin() + static_cast<std::ptrdiff_t>(k);
+  std::nth_element(values_.begin(), at, values_.end());
+  return *at;
+}
+
+// The steps of robustSigma on a copy of v (median, |v − median| in place, its median), each
+// selection as kthSmallest does it; the copy is made only where a selection reorders it.
+double RobustScale::sigma(std::span<const double> v) {
   if (v.empty()) return kNaN;
   const std::size_t mid = v.size() / 2;
-  std::vector<double> window;
-  window.reserve(v.size() / 4);
-  const double median = kthSmallest(v, mid, window);
-  for (double& x : v) x = std::abs(x - median);
-  return 1.482602218505602 * kthSmallest(v, mid, window);
+  std::span<const double> current = v;  // the copy's contents before the second step
+  double median = 0.0;
+  if (!selectInWindow(v, mid, [](double x) { return x; }, window_, median)) {
+    values_.assign(v.begin(), v.end());
+    std::nth_element(values_.begin(), values_.begin() + static_cast<std::ptrdiff_t>(mid), values_.end());
+    median = values_[mid];
+    current = values_;
+  }
+  const auto deviation = [median](double x) { return std::abs(x - median); };
+  double mad = 0.0;
+  if (!selectInWindow(current, mid, deviation, window_, mad)) {
+    if (current.data() != values_.data()) values_.assign(v.begin(), v.end());
+    for (double& x : values_) x = deviation(x);
+    std::nth_element(values_.begin(), values_.begin() + static_cast<std::ptrdiff_t>(mid), values_.end());
+    mad = values_[mid];
+  }
+  return 1.482602218505602 * mad;
 }
+
+double robustSigma(std::vector<double> v) { return RobustScale().sigma(v); }
 
 // ------------------------------------------------------------------------------------ linear
 
@@ -146,6 +176,19 @@ class DenseDesign {
       data_.push_back(sw * y);
     }
   }
+  /// One regressor from columns: what a row returning x[i], y[i], w[i] gives.
+  DenseDesign(std::span<const double> x, std::span<const double> y, std::span<const double> w)
+      : p_(1), stride_(2) {
+    data_.resize(2 * x.size());
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      if (!(w[i] > 0.0)) continue;
+      const double sw = std::sqrt(w[i]);
+      data_[k++] = sw * x[i];
+      data_[k++] = sw * y[i];
+    }
+    data_.resize(k);
+  }
   [[nodiscard]] std::size_t samples() const noexcept { return data_.size() / stride_; }
   /// The robust scale's floor from the √w-scaled outputs.
   [[nodiscard]] double floor() const {
@@ -155,29 +198,67 @@ class DenseDesign {
   }
   /// Lower triangle of Σ m·x·xᵀ and Σ m·x·y.
   void normal(const std::vector<double>& m, Eigen::MatrixXd& A, Eigen::VectorXd& b) const {
-    for (std::size_t i = 0; i < m.size(); ++i) {
-      if (m[i] == 0.0) continue;
-      const double* d = data_.data() + i * stride_;
-      for (int a = 0; a < p_; ++a) {
-        const double ma = m[i] * d[a];
-        b(a) += ma * d[p_];
-        for (int c = 0; c <= a; ++c) A(a, c) += ma * d[c];
-      }
-    }
+    dispatch([&]<int P>() { normalFixed<P>(m, A, b); });
   }
   void residuals(const Eigen::VectorXd& beta, std::vector<double>& r) const {
-    for (std::size_t i = 0; i < r.size(); ++i) {
-      const double* d = data_.data() + i * stride_;
-      double pred = 0.0;
-      for (int a = 0; a < p_; ++a) pred += d[a] * beta(a);
-      r[i] = d[p_] - pred;
-    }
+    dispatch([&]<int P>() { residualsFixed<P>(beta, r); });
   }
 
  private:
   int p_;
   std::size_t stride_;
   std::vector<double> data_;
+
+  /// f.template operator()<p_>(): the loops below with the number of parameters known to the
+  /// compiler (they then keep the sums in registers; each sum takes the same terms in the same
+  /// order as with p_ read at run time).
+  template <class F>
+  void dispatch(F&& f) const {
+    switch (p_) {
+      case 1: f.template operator()<1>(); return;
+      case 2: f.template operator()<2>(); return;
+      case 3: f.template operator()<3>(); return;
+      case 4: f.template operator()<4>(); return;
+      case 5: f.template operator()<5>(); return;
+      case 6: f.template operator()<6>(); return;
+      case 7: f.template operator()<7>(); return;
+      default: f.template operator()<8>(); return;
+    }
+  }
+  template <int P>
+  void normalFixed(const std::vector<double>& m, Eigen::MatrixXd& A, Eigen::VectorXd& b) const {
+    static_assert(P >= 1 && P <= kMaxParameters);
+    std::array<double, P * P> a{};
+    std::array<double, P> bb{};
+    for (int i = 0; i < P; ++i) {
+      bb[i] = b(i);
+      for (int c = 0; c <= i; ++c) a[i * P + c] = A(i, c);
+    }
+    const double* d = data_.data();
+    for (std::size_t i = 0; i < m.size(); ++i, d += P + 1) {
+      if (m[i] == 0.0) continue;
+      for (int k = 0; k < P; ++k) {
+        const double mk = m[i] * d[k];
+        bb[k] += mk * d[P];
+        for (int c = 0; c <= k; ++c) a[k * P + c] += mk * d[c];
+      }
+    }
+    for (int i = 0; i < P; ++i) {
+      b(i) = bb[i];
+      for (int c = 0; c <= i; ++c) A(i, c) = a[i * P + c];
+    }
+  }
+  template <int P>
+  void residualsFixed(const Eigen::VectorXd& beta, std::vector<double>& r) const {
+    std::array<double, P> x{};
+    for (int k = 0; k < P; ++k) x[k] = beta(k);
+    const double* d = data_.data();
+    for (std::size_t i = 0; i < r.size(); ++i, d += P + 1) {
+      double pred = 0.0;
+      for (int k = 0; k < P; ++k) pred += d[k] * x[k];
+      r[i] = d[P] - pred;
+    }
+  }
 };
 
 /// Rows with at most kMaxRowEntries non-zero regressors out of many parameters (compressed
@@ -243,6 +324,18 @@ class SparseDesign {
   std::vector<double> y_;
 };
 
+/// m[i] = lossWeight(loss, r[i]/threshold), with the loss chosen once, not per sample.
+void lossWeights(RobustLoss loss, const std::vector<double>& r, double threshold, std::vector<double>& m) {
+  const auto fill = [&](auto constant_loss) {
+    for (std::size_t i = 0; i < r.size(); ++i) m[i] = lossWeight(constant_loss(), r[i] / threshold);
+  };
+  switch (loss) {
+    case RobustLoss::kHuber: fill([] { return RobustLoss::kHuber; }); return;
+    case RobustLoss::kCauchy: fill([] { return RobustLoss::kCauchy; }); return;
+    case RobustLoss::kNone: fill([] { return RobustLoss::kNone; }); return;
+  }
+}
+
 /// Steps 1–4 of the header on a design (DenseDesign or SparseDesign) with p parameters.
 template <class Design>
 LeastSquaresFit robustLinear(const Design& design, int p, const RobustOptions& robust) {
@@ -262,7 +355,8 @@ LeastSquaresFit robustLinear(const Design& design, int p, const RobustOptions& r
 
   // The residuals' robust scale, never below the floor (exact data).
   const double floor = design.floor();
-  auto scale = [&] { return std::max(robustSigma(r), floor); };
+  RobustScale robust_scale;
+  auto scale = [&] { return std::max(robust_scale.sigma(r), floor); };
   // Solves the normal equations with multipliers m, then fills r. False when singular.
   auto solve = [&]() -> bool {
     Eigen::MatrixXd A = Eigen::MatrixXd::Zero(p, p);
@@ -288,7 +382,7 @@ LeastSquaresFit robustLinear(const Design& design, int p, const RobustOptions& r
       if (iter < 3) s = scale();
       if (!(s > 0.0)) break;  // exact fit: nothing to down-weight
       const double threshold = robust.loss_scale * s;
-      for (std::size_t i = 0; i < n; ++i) m[i] = lossWeight(robust.loss, r[i] / threshold);
+      lossWeights(robust.loss, r, threshold, m);
       const Eigen::VectorXd previous = beta;
       if (!solve()) {
         fit.message = kSingular;
@@ -345,6 +439,18 @@ LeastSquaresFit fitLinear(std::size_t samples, int parameters, const LinearRow& 
   }
   return robustLinear(DenseDesign(samples, parameters, row), parameters, robust);
 }
+
+namespace detail {
+
+LeastSquaresFit fitLinearColumns(std::span<const double> x, std::span<const double> y,
+                                 std::span<const double> w, const RobustOptions& robust) {
+  if (y.size() != x.size() || w.size() != x.size()) {
+    throw std::invalid_argument("fitLinearColumns: columns of different lengths");
+  }
+  return robustLinear(DenseDesign(x, y, w), 1, robust);
+}
+
+}  // namespace detail
 
 LeastSquaresFit fitSparseLinear(std::size_t samples, int parameters, const SparseLinearRow& row,
                                 const RobustOptions& robust) {

@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Internal to least_squares.cpp and nonlinear_fit.cpp: the pieces the linear and the nonlinear
-// solver share (the uncertainty and the identifiability test).
+// solver share (the uncertainty and the identifiability test); and fitLinearColumns, the one-
+// regressor linear fit of fitMixing (platform_fit.cpp).
+
+#include <span>
 
 #include <Eigen/Core>
 
@@ -29,6 +32,12 @@ double lossWeight(RobustLoss loss, double u);
 /// form; false when it is (numerically) singular. `condition` (optional): the scaled matrix's
 /// √(λmax/λmin), the design's condition number.
 bool invertNormal(const Eigen::MatrixXd& A, Eigen::MatrixXd& inverse, double* condition = nullptr);
+
+/// fitLinear with one regressor from columns: sample i is x[i], y[i] with weight w[i] (left out
+/// where w[i] ≤ 0), the numbers fitLinear gives for a row that returns them, without a call
+/// through std::function per sample.
+[[nodiscard]] LeastSquaresFit fitLinearColumns(std::span<const double> x, std::span<const double> y,
+                                               std::span<const double> w, const RobustOptions& robust);
 
 /// The message of a singular problem.
 extern const char* const kSingular;

@@ -180,7 +180,8 @@ LeastSquaresFit fitNonlinear(const NonlinearProblem& problem, const Eigen::Vecto
   Eigen::VectorXd x = x0;
   std::vector<double> r;
   const double floor = problem.scale_floor;
-  auto scale = [&] { return std::max(robustSigma(r), floor); };
+  RobustScale robust_scale;
+  auto scale = [&] { return std::max(robust_scale.sigma(r), floor); };
   if (!residuals(x, r)) {
     fit.message = "the initial guess lies outside the model's domain";
     return fit;

@@ -10,6 +10,7 @@
 #include <Eigen/LU>
 
 #include "fit_support.hpp"
+#include "least_squares_support.hpp"
 #include "geaware/model/mixer.hpp"
 
 namespace geaware::ident {
@@ -315,26 +316,27 @@ MixingFit fitMixing(const PlatformLog& log, double b, const PlatformFitOptions& 
                {log.f_N[2][i], log.tau_Nm[0][i], log.tau_Nm[1][i], log.tau_Nm[2][i]},
                log.fzWeight(i), log.samples(i)};
   }
-  // One-coefficient fit of column `k` on the samples j in [first, last) of `order`.
-  auto fitOne = [&](int k, const std::vector<std::size_t>& order, std::size_t first,
-                    std::size_t last, FitStats* stats) -> std::optional<Estimate> {
-    const auto ls = fitLinear(
-        last - first, 1,
-        [&](std::size_t m, double* x, double& y, double& w) {
-          const Row& r = rows[order[first + m]];
-          x[0] = r.x[static_cast<std::size_t>(k)];
-          y = r.y[static_cast<std::size_t>(k)];
-          w = k == 0 ? r.w_fz : r.w_tau;
-          return true;
-        },
-        k == 0 ? fzRobust(log, options.robust) : options.robust);
+  // One-coefficient fit of column `k` on the rows [first, last) of `rs`, gathered as columns.
+  std::vector<double> xs;
+  std::vector<double> ys;
+  std::vector<double> ws;
+  auto fitOne = [&](int k, const std::vector<Row>& rs, std::size_t first, std::size_t last,
+                    FitStats* stats) -> std::optional<Estimate> {
+    const auto c = static_cast<std::size_t>(k);
+    xs.resize(last - first);
+    ys.resize(last - first);
+    ws.resize(last - first);
+    for (std::size_t m = first; m < last; ++m) {
+      xs[m - first] = rs[m].x[c];
+      ys[m - first] = rs[m].y[c];
+      ws[m - first] = k == 0 ? rs[m].w_fz : rs[m].w_tau;
+    }
+    const auto ls = detail::fitLinearColumns(xs, ys, ws, k == 0 ? fzRobust(log, options.robust) : options.robust);
     if (!ls.ok) return std::nullopt;
     if (stats != nullptr) *stats = ls.stats;
     return ls.estimate(0);
   };
 
-  std::vector<std::size_t> all(rows.size());
-  for (std::size_t j = 0; j < all.size(); ++j) all[j] = j;
   static constexpr std::array<const char*, 3> kName = {"k_TX", "k_TY", "k_I"};
   static constexpr std::array<const char*, 3> kPattern = {
       "roll: −n1²+n2²+n3²−n4²", "pitch: −n1²+n2²−n3²+n4²", "yaw: −n1²−n2²+n3²+n4²"};
@@ -342,7 +344,7 @@ MixingFit fitMixing(const PlatformLog& log, double b, const PlatformFitOptions& 
                                                      &out.k_I_Nm_per_rpm2};
   std::array<FitStats*, 3> stats = {&out.roll, &out.pitch, &out.yaw};
   for (int k = 0; k < 3; ++k) {
-    *targets[static_cast<std::size_t>(k)] = fitOne(k + 1, all, 0, all.size(), stats[static_cast<std::size_t>(k)]);
+    *targets[static_cast<std::size_t>(k)] = fitOne(k + 1, rows, 0, rows.size(), stats[static_cast<std::size_t>(k)]);
     if (!*targets[static_cast<std::size_t>(k)]) {
       out.warnings.push_back(std::string(kName[static_cast<std::size_t>(k)]) +
                              " not fitted: the rotor speeds never differ in the " +
@@ -357,16 +359,20 @@ MixingFit fitMixing(const PlatformLog& log, double b, const PlatformFitOptions& 
     }
   }
 
-  // Height bands of equal sample count; samples at one height never straddle two bands.
-  std::vector<std::size_t> order = all;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t c) {
-    return log.h_m[idx[a]] < log.h_m[idx[c]];
-  });
+  // Height bands of equal sample count; samples at one height never straddle two bands. The
+  // rows are put into height order once, so that each band's rows are contiguous.
+  std::vector<double> level_h(rows.size());
+  for (std::size_t j = 0; j < rows.size(); ++j) level_h[j] = log.h_m[idx[j]];
+  std::vector<std::size_t> order(rows.size());
+  for (std::size_t j = 0; j < order.size(); ++j) order[j] = j;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t c) { return level_h[a] < level_h[c]; });
   std::vector<double> sorted_h(order.size());
   std::vector<double> sorted_samples(order.size());
+  std::vector<Row> sorted_rows(order.size());
   for (std::size_t m = 0; m < order.size(); ++m) {
-    sorted_h[m] = log.h_m[idx[order[m]]];
+    sorted_h[m] = level_h[order[m]];
     sorted_samples[m] = log.samples(idx[order[m]]);
+    sorted_rows[m] = rows[order[m]];
   }
   for (const auto& [first, last] : detail::bandRanges(sorted_h, options.height_bands, sorted_samples)) {
     HeightBand hb;
@@ -381,10 +387,10 @@ MixingFit fitMixing(const PlatformLog& log, double b, const PlatformFitOptions& 
     hb.count = static_cast<std::size_t>(std::llround(samples));
     hb.h_mean_m = sum / samples;
     if (hb.count >= options.min_band_samples) {
-      hb.k_T_N_per_rpm2 = fitOne(0, order, first, last, nullptr);
-      hb.k_TX_N_per_rpm2 = fitOne(1, order, first, last, nullptr);
-      hb.k_TY_N_per_rpm2 = fitOne(2, order, first, last, nullptr);
-      hb.k_I_Nm_per_rpm2 = fitOne(3, order, first, last, nullptr);
+      hb.k_T_N_per_rpm2 = fitOne(0, sorted_rows, first, last, nullptr);
+      hb.k_TX_N_per_rpm2 = fitOne(1, sorted_rows, first, last, nullptr);
+      hb.k_TY_N_per_rpm2 = fitOne(2, sorted_rows, first, last, nullptr);
+      hb.k_I_Nm_per_rpm2 = fitOne(3, sorted_rows, first, last, nullptr);
     }
     out.bands.push_back(hb);
   }

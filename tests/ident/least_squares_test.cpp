@@ -5,7 +5,10 @@
 #include "geaware/ident/least_squares.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -173,6 +176,86 @@ TEST(LeastSquares, RobustSigmaIsExactlyTheMedianOfAbsoluteDeviations) {
     }
     for (std::size_t c = 0; c < cases.size(); ++c) {
       EXPECT_EQ(geaware::ident::robustSigma(cases[c]), oracle(cases[c])) << "n " << n << ", case " << c;
+    }
+  }
+}
+
+// Values for the selection tests: normal draws with heavy ties, zeros of both signs and
+// infinities mixed in (`kind` picks the mixture).
+std::vector<double> selectionCase(std::size_t n, int kind, std::mt19937_64& rng) {
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_int_distribution<int> pick(0, 9);
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> v(n);
+  const std::size_t stride = std::max<std::size_t>(1, n / 1024);
+  for (std::size_t i = 0; i < n; ++i) {
+    const int u = pick(rng);
+    switch (kind) {
+      case 0: v[i] = normal(rng); break;
+      case 1: v[i] = static_cast<double>(u % 3); break;                             // 3 values
+      case 2: v[i] = u < 3 ? 0.0 : u < 6 ? -0.0 : normal(rng); break;               // ±0
+      case 3: v[i] = u == 0 ? inf : u == 1 ? -inf : u == 2 ? -0.0 : normal(rng); break;
+      case 4: v[i] = static_cast<double>(n - i); break;                             // reversed
+      // Every value the 1024-value sample sees is far below the others: its bracket misses
+      // and the whole vector is selected from.
+      default: v[i] = i % stride == 0 ? -1e9 - static_cast<double>(i) : static_cast<double>(i); break;
+    }
+  }
+  return v;
+}
+
+TEST(LeastSquares, KthSmallestIsTheValueNthElementSelects) {
+  // RobustScale::kthSmallest against std::nth_element on a copy: every size from 1 to 300 at
+  // every k, and sizes around and above the 8192 values where the sampled window starts, at
+  // the median, the ends and random ranks; one RobustScale reused throughout (its buffers keep
+  // the previous, larger sizes). Compared with ==: −0 and +0 are the same order statistic.
+  std::mt19937_64 rng(11);
+  geaware::ident::RobustScale scale;
+  const auto oracle = [](std::vector<double> v, std::size_t k) {
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+    return v[k];
+  };
+  for (std::size_t n = 1; n <= 300; ++n) {
+    for (int kind = 0; kind < 6; ++kind) {
+      const auto v = selectionCase(n, kind, rng);
+      for (std::size_t k = 0; k < n; ++k) {
+        ASSERT_EQ(scale.kthSmallest(v, k), oracle(v, k)) << "n " << n << ", kind " << kind << ", k " << k;
+      }
+    }
+  }
+  for (const std::size_t n : {100000u, 8191u, 8192u, 8193u, 20000u, 65537u}) {
+    std::uniform_int_distribution<std::size_t> rank(0, n - 1);
+    for (int kind = 0; kind < 6; ++kind) {
+      const auto v = selectionCase(n, kind, rng);
+      for (const std::size_t k : {std::size_t{0}, n / 2, n - 1, n / 8, rank(rng), rank(rng)}) {
+        EXPECT_EQ(scale.kthSmallest(v, k), oracle(v, k)) << "n " << n << ", kind " << kind << ", k " << k;
+      }
+    }
+  }
+}
+
+TEST(LeastSquares, RobustScaleIsTheMadOfAFullSelectionBitForBit) {
+  // One RobustScale over many vectors (as the iterations of a fit use it) gives the MAD of a
+  // full std::nth_element on each, bit for bit, on the mixtures above (ties, ±0, infinities, a
+  // sample whose bracket misses) and sizes below and above the sampled window's 8192. (The
+  // deviations are |x − median|, never −0, so any exact selection gives the same bits.)
+  const auto oracle = [](std::vector<double> v) {
+    const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+    std::nth_element(v.begin(), mid, v.end());
+    const double median = *mid;
+    for (double& x : v) x = std::abs(x - median);
+    std::nth_element(v.begin(), mid, v.end());
+    return 1.482602218505602 * *mid;
+  };
+  std::mt19937_64 rng(12);
+  geaware::ident::RobustScale scale;
+  for (const std::size_t n : {1u, 2u, 3u, 10u, 8191u, 8192u, 50000u, 9000u, 7u}) {
+    for (int kind = 0; kind < 6; ++kind) {
+      const auto v = selectionCase(n, kind, rng);
+      const double expected = oracle(v);
+      const double got = scale.sigma(v);
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(got), std::bit_cast<std::uint64_t>(expected))
+          << "n " << n << ", kind " << kind << ": " << got << " vs " << expected;
     }
   }
 }

@@ -21,6 +21,7 @@
 #include <cstddef>
 #include <functional>
 #include <limits>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -182,5 +183,20 @@ using SparseLinearRow = std::function<bool(std::size_t i, int* index, double* va
 
 /// Robust standard deviation 1.4826·median(|v − median(v)|) (normal-consistent MAD).
 [[nodiscard]] double robustSigma(std::vector<double> v);
+
+/// robustSigma for many vectors in a row (the iterations of one fit), with its buffers kept
+/// between calls: after the first call it allocates nothing, and v is read, not copied.
+class RobustScale {
+ public:
+  /// robustSigma(v), the same value bit for bit.
+  [[nodiscard]] double sigma(std::span<const double> v);
+  /// The k-th smallest (0-based) of v, k < v.size(): the value std::nth_element puts at
+  /// position k of a copy of v (for values without NaN, any exact selection gives it).
+  [[nodiscard]] double kthSmallest(std::span<const double> v, std::size_t k);
+
+ private:
+  std::vector<double> window_;  ///< the values inside the sample's bracket
+  std::vector<double> values_;  ///< a copy of v when all of v must be selected from
+};
 
 }  // namespace geaware::ident
