@@ -80,9 +80,10 @@ namespace {
 /// caller then selects from all values). On many values, the order statistics of an evenly
 /// spaced sample of 1024 of them bracket the k-th in a window of about 1/8 of the values: one
 /// pass counts those below the window and copies those in it, and only the window is selected
-/// from. The pass is branch-free (every value is written, the count advances only for those in
-/// the window): the window holds the same values in the same order as a pass with branches, so
-/// std::nth_element on it gives the same value whatever the values are (NaN and ties included).
+/// from. The pass has no data-dependent branch (every value of a block is written, the count
+/// advances only for those in the window): the window holds the same values in the same order
+/// as a pass with branches, so std::nth_element on it gives the same value whatever the values
+/// are (NaN and ties included).
 template <class F>
 bool selectInWindow(std::span<const double> v, std::size_t k, F f, std::vector<double>& window, double& out) {
   constexpr std::size_t kSample = 1024;
@@ -102,12 +103,29 @@ bool selectInWindow(std::span<const double> v, std::size_t k, F f, std::vector<d
   double* const w = window.data();
   std::size_t below = 0;
   std::size_t count = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double x = f(v[i]);
-    const bool is_below = x < lo;
-    w[count] = x;
-    below += static_cast<std::size_t>(is_below);
-    count += static_cast<std::size_t>(!is_below && !(x > hi));
+  // Per block: flags and counts first (a loop without branches the compiler vectorizes), then,
+  // if any value of the block lies in the window, the copy.
+  constexpr std::size_t kBlock = 64;
+  std::array<unsigned char, kBlock> in{};
+  for (std::size_t first = 0; first < n; first += kBlock) {
+    const double* const b = v.data() + first;
+    const std::size_t m = std::min(kBlock, n - first);
+    std::size_t block_below = 0;
+    std::size_t block_in = 0;
+    for (std::size_t j = 0; j < m; ++j) {
+      const double x = f(b[j]);
+      const auto is_below = static_cast<unsigned char>(x < lo);
+      const auto is_in = static_cast<unsigned char>(static_cast<unsigned char>(!(x < lo)) & static_cast<unsigned char>(!(x > hi)));
+      in[j] = is_in;
+      block_below += is_below;
+      block_in += is_in;
+    }
+    below += block_below;
+    if (block_in == 0) continue;
+    for (std::size_t j = 0; j < m; ++j) {
+      w[count] = f(b[j]);
+      count += in[j];
+    }
   }
   if (below <= k && k < below + count) {
     double* const at = w + (k - below);
