@@ -304,19 +304,31 @@ struct CsvReader::Impl {
     }
   }
 
+  // The hot path of every cell: a plain decimal in range. Everything else (from_chars, and the
+  // messages, which build strings) is in the out-of-line functions below, so that this one and
+  // takeCell stay small enough to inline into next().
   double parseCell(std::string_view cell, std::size_t k) const {
     const CsvColumn& col = options.columns[k];
     const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r'; };
     if (cell.empty() || blank(cell.front()) || blank(cell.back())) cell = detail::trimBlanks(cell);
-    if (cell.empty()) {
-      if (col.non_finite) return std::numeric_limits<double>::quiet_NaN();
-      fail(line_no, col.name, "empty cell, expected a number");
-    }
+    if (cell.empty()) return emptyCell(col);
     const char* first = cell.data();
     const char* last = cell.data() + cell.size();
     if (*first == '+') ++first;
     double v = 0.0;
-    if (detail::parsePlainDecimal(first, last, v)) return checkRange(v, cell, col);
+    if (!detail::parsePlainDecimal(first, last, v)) return parseOther(cell, first, last, col);
+    return checkRange(v, cell, col);
+  }
+
+  [[gnu::noinline]] double emptyCell(const CsvColumn& col) const {
+    if (col.non_finite) return std::numeric_limits<double>::quiet_NaN();
+    fail(line_no, col.name, "empty cell, expected a number");
+  }
+
+  // A cell parsePlainDecimal does not take: std::from_chars.
+  [[gnu::noinline]] double parseOther(std::string_view cell, const char* first, const char* last,
+                                      const CsvColumn& col) const {
+    double v = 0.0;
     const auto [ptr, ec] = std::from_chars(first, last, v);
     if (ec == std::errc::result_out_of_range) {
       fail(line_no, col.name, "'" + detail::excerpt(cell) + "' is out of the range of a double");
@@ -332,20 +344,24 @@ struct CsvReader::Impl {
   }
 
   double checkRange(double v, std::string_view cell, const CsvColumn& col) const {
-    if (v < col.min || v > col.max) {
-      fail(line_no, col.name, "value " + detail::excerpt(cell) + " is outside the plausible range [" +
-                                  number(col.min) + ", " + number(col.max) +
-                                  "] for this column (wrong unit?)");
-    }
+    if (v < col.min || v > col.max) [[unlikely]] outOfRange(cell, col);
     return v;
   }
 
+  [[noreturn, gnu::noinline, gnu::cold]] void outOfRange(std::string_view cell, const CsvColumn& col) const {
+    fail(line_no, col.name, "value " + detail::excerpt(cell) + " is outside the plausible range [" +
+                                number(col.min) + ", " + number(col.max) +
+                                "] for this column (wrong unit?)");
+  }
+
   void takeCell(std::string_view text, std::size_t cell, std::span<double> values) const {
-    if (cell >= slot_of_cell.size()) {
-      fail(line_no, "", "row has more cells than the header's " + std::to_string(header.size()));
-    }
+    if (cell >= slot_of_cell.size()) [[unlikely]] tooManyCells();
     const int slot = slot_of_cell[cell];
     if (slot >= 0) values[static_cast<std::size_t>(slot)] = parseCell(text, static_cast<std::size_t>(slot));
+  }
+
+  [[noreturn, gnu::noinline, gnu::cold]] void tooManyCells() const {
+    fail(line_no, "", "row has more cells than the header's " + std::to_string(header.size()));
   }
 
   bool next(std::span<double> values) {
