@@ -342,15 +342,24 @@ class SparseDesign {
   std::vector<double> y_;
 };
 
-/// m[i] = lossWeight(loss, r[i]/threshold), with the loss chosen once, not per sample.
+/// m[i] = lossWeight(loss, r[i]/threshold), with the loss chosen once, not per sample. Huber's
+/// weight is lossWeight's expression with both sides computed and one chosen (no branch on
+/// the data; the compiler vectorizes it).
 void lossWeights(RobustLoss loss, const std::vector<double>& r, double threshold, std::vector<double>& m) {
-  const auto fill = [&](auto constant_loss) {
-    for (std::size_t i = 0; i < r.size(); ++i) m[i] = lossWeight(constant_loss(), r[i] / threshold);
-  };
   switch (loss) {
-    case RobustLoss::kHuber: fill([] { return RobustLoss::kHuber; }); return;
-    case RobustLoss::kCauchy: fill([] { return RobustLoss::kCauchy; }); return;
-    case RobustLoss::kNone: fill([] { return RobustLoss::kNone; }); return;
+    case RobustLoss::kHuber:
+      for (std::size_t i = 0; i < r.size(); ++i) {
+        const double a = std::abs(r[i] / threshold);
+        const double inverse = 1.0 / a;
+        m[i] = a <= 1.0 ? 1.0 : inverse;
+      }
+      return;
+    case RobustLoss::kCauchy:
+      for (std::size_t i = 0; i < r.size(); ++i) m[i] = lossWeight(RobustLoss::kCauchy, r[i] / threshold);
+      return;
+    case RobustLoss::kNone:
+      for (std::size_t i = 0; i < r.size(); ++i) m[i] = lossWeight(RobustLoss::kNone, r[i] / threshold);
+      return;
   }
 }
 

@@ -170,7 +170,7 @@ LevelingFit fitLeveling(const PlatformLog& log, const LevelingInputs& in,
   NonlinearProblem problem;
   problem.samples = h.size();
   problem.parameters = 3;
-  problem.residual = [&](std::size_t j, const double* x, double& r, double* g) {
+  const auto residual = [&](std::size_t j, const double* x, double& r, double* g) {
     if (!validShape(x[0], x[1])) return false;
     const double d = h[j] * h[j] + x[0] * h[j] + x[1];
     const double m = h[j] / (d * d);
@@ -182,6 +182,8 @@ LevelingFit fitLeveling(const PlatformLog& log, const LevelingInputs& in,
     }
     return true;
   };
+  problem.residual = residual;
+  problem.block = blockResidual(residual, problem.parameters);
   problem.scales = {std::max(std::abs(x0(0)), 0.05), std::max(x0(1), 1e-3), x0(2)};
   problem.lower = {-100.0, 1e-9, 0.0};
   problem.upper = {100.0, 100.0, 100.0};
