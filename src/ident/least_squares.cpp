@@ -343,17 +343,18 @@ class SparseDesign {
 };
 
 /// m[i] = lossWeight(loss, r[i]/threshold), with the loss chosen once, not per sample. Huber's
-/// weight is lossWeight's expression with both sides computed and one chosen (no branch on
-/// the data; the compiler vectorizes it).
+/// weight is 1 where |u| = |r|/threshold ≤ 1; with a finite threshold > 0 that holds wherever
+/// |r| ≤ threshold (division rounds monotonically and 1 is a double), so only the others
+/// need the two divisions of lossWeight.
 void lossWeights(RobustLoss loss, const std::vector<double>& r, double threshold, std::vector<double>& m) {
   switch (loss) {
-    case RobustLoss::kHuber:
+    case RobustLoss::kHuber: {
+      const bool finite = threshold > 0.0 && threshold < std::numeric_limits<double>::infinity();
       for (std::size_t i = 0; i < r.size(); ++i) {
-        const double a = std::abs(r[i] / threshold);
-        const double inverse = 1.0 / a;
-        m[i] = a <= 1.0 ? 1.0 : inverse;
+        m[i] = finite && std::abs(r[i]) <= threshold ? 1.0 : lossWeight(RobustLoss::kHuber, r[i] / threshold);
       }
       return;
+    }
     case RobustLoss::kCauchy:
       for (std::size_t i = 0; i < r.size(); ++i) m[i] = lossWeight(RobustLoss::kCauchy, r[i] / threshold);
       return;

@@ -131,8 +131,24 @@ LevelingFit fitLeveling(const PlatformLog& log, const LevelingInputs& in,
   const std::size_t beyond = t.beyond;
 
   // Initial guess by variable projection: for a fixed shape (g3, g4) the scale is linear;
-  // scan the valid shapes on a grid (on at most ~20,000 samples) and keep the best.
+  // scan the valid shapes on a grid (on at most ~20,000 samples) and keep the best. The
+  // samples are gathered once into contiguous arrays, Σw·y² (the same for every shape) is
+  // summed once, and each shape's regressors are computed before its sums: the same numbers,
+  // summed in the same order.
   const std::size_t stride = std::max<std::size_t>(1, h.size() / 20000);
+  std::vector<double> hs;
+  std::vector<double> us;
+  std::vector<double> ws;
+  std::vector<double> ys;
+  for (std::size_t j = 0; j < h.size(); j += stride) {
+    hs.push_back(h[j]);
+    us.push_back(u[j]);
+    ws.push_back(t.w[j]);
+    ys.push_back(y[j]);
+  }
+  double syy = 0.0;
+  for (std::size_t j = 0; j < hs.size(); ++j) syy += ws[j] * ys[j] * ys[j];
+  std::vector<double> xs(hs.size());
   double best_sse = std::numeric_limits<double>::infinity();
   Eigen::Vector3d x0(0.0, 0.0, 0.0);
   bool any_positive = false;
@@ -141,14 +157,12 @@ LevelingFit fitLeveling(const PlatformLog& log, const LevelingInputs& in,
     for (int c = 0; c <= 36; ++c) {
       const double g4 = 1e-3 * std::pow(10.0, c / 12.0);  // 1e-3 … 1 m²
       if (!validShape(g3, g4)) continue;
+      for (std::size_t j = 0; j < hs.size(); ++j) xs[j] = levelingCoefficient(g3, g4, 1.0, hs[j]) * us[j];
       double sxx = 0.0;
       double sxy = 0.0;
-      double syy = 0.0;
-      for (std::size_t j = 0; j < h.size(); j += stride) {
-        const double x = levelingCoefficient(g3, g4, 1.0, h[j]) * u[j];
-        sxx += t.w[j] * x * x;
-        sxy += t.w[j] * x * y[j];
-        syy += t.w[j] * y[j] * y[j];
+      for (std::size_t j = 0; j < hs.size(); ++j) {
+        sxx += ws[j] * xs[j] * xs[j];
+        sxy += ws[j] * xs[j] * ys[j];
       }
       if (!(sxx > 0.0)) continue;
       const double scale = sxy / sxx;

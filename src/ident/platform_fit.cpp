@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <span>
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
@@ -301,37 +302,37 @@ MixingFit fitMixing(const PlatformLog& log, double b, const PlatformFitOptions& 
   }
   // Regressors of the four coefficients per level sample: thrust Σn² (k_T), roll and pitch
   // arm·(A·N²) (k_TX, k_TY), yaw A·N² (k_I); and the measured f_z, τ_x, τ_y, τ_z; the weights
-  // of f_z (1/σ² when the stds are given) and of the torques (the samples behind the row).
-  struct Row {
-    std::array<double, 4> x;
-    std::array<double, 4> y;
-    double w_fz;
-    double w_tau;
+  // of f_z (1/σ² when the stds are given) and of the torques (the samples behind the row). As
+  // columns, which the fits take as they are.
+  struct Columns {
+    std::array<std::vector<double>, 4> x;
+    std::array<std::vector<double>, 4> y;
+    std::vector<double> w_fz;
+    std::vector<double> w_tau;
+    [[nodiscard]] std::array<std::vector<double>*, 10> all() { return {&x[0], &x[1], &x[2], &x[3], &y[0], &y[1], &y[2], &y[3], &w_fz, &w_tau}; }
   };
-  std::vector<Row> rows(idx.size());
+  Columns cols;
+  for (auto* c : cols.all()) c->resize(idx.size());
   for (std::size_t j = 0; j < idx.size(); ++j) {
     const std::size_t i = idx[j];
     const auto c = mixingCombinations(log, i);
-    rows[j] = {{sumSquares(log, i), arm * c[0], arm * c[1], c[2]},
-               {log.f_N[2][i], log.tau_Nm[0][i], log.tau_Nm[1][i], log.tau_Nm[2][i]},
-               log.fzWeight(i), log.samples(i)};
+    cols.x[0][j] = sumSquares(log, i);
+    cols.x[1][j] = arm * c[0];
+    cols.x[2][j] = arm * c[1];
+    cols.x[3][j] = c[2];
+    cols.y[0][j] = log.f_N[2][i];
+    cols.y[1][j] = log.tau_Nm[0][i];
+    cols.y[2][j] = log.tau_Nm[1][i];
+    cols.y[3][j] = log.tau_Nm[2][i];
+    cols.w_fz[j] = log.fzWeight(i);
+    cols.w_tau[j] = log.samples(i);
   }
-  // One-coefficient fit of column `k` on the rows [first, last) of `rs`, gathered as columns.
-  std::vector<double> xs;
-  std::vector<double> ys;
-  std::vector<double> ws;
-  auto fitOne = [&](int k, const std::vector<Row>& rs, std::size_t first, std::size_t last,
-                    FitStats* stats) -> std::optional<Estimate> {
+  // One-coefficient fit of column `k` on the rows [first, last).
+  auto fitOne = [&](int k, std::size_t first, std::size_t last, FitStats* stats) -> std::optional<Estimate> {
+    const auto rows = [&](const std::vector<double>& v) { return std::span<const double>(v).subspan(first, last - first); };
     const auto c = static_cast<std::size_t>(k);
-    xs.resize(last - first);
-    ys.resize(last - first);
-    ws.resize(last - first);
-    for (std::size_t m = first; m < last; ++m) {
-      xs[m - first] = rs[m].x[c];
-      ys[m - first] = rs[m].y[c];
-      ws[m - first] = k == 0 ? rs[m].w_fz : rs[m].w_tau;
-    }
-    const auto ls = detail::fitLinearColumns(xs, ys, ws, k == 0 ? fzRobust(log, options.robust) : options.robust);
+    const auto ls = detail::fitLinearColumns(rows(cols.x[c]), rows(cols.y[c]), rows(k == 0 ? cols.w_fz : cols.w_tau),
+                                             k == 0 ? fzRobust(log, options.robust) : options.robust);
     if (!ls.ok) return std::nullopt;
     if (stats != nullptr) *stats = ls.stats;
     return ls.estimate(0);
@@ -344,7 +345,7 @@ MixingFit fitMixing(const PlatformLog& log, double b, const PlatformFitOptions& 
                                                      &out.k_I_Nm_per_rpm2};
   std::array<FitStats*, 3> stats = {&out.roll, &out.pitch, &out.yaw};
   for (int k = 0; k < 3; ++k) {
-    *targets[static_cast<std::size_t>(k)] = fitOne(k + 1, rows, 0, rows.size(), stats[static_cast<std::size_t>(k)]);
+    *targets[static_cast<std::size_t>(k)] = fitOne(k + 1, 0, idx.size(), stats[static_cast<std::size_t>(k)]);
     if (!*targets[static_cast<std::size_t>(k)]) {
       out.warnings.push_back(std::string(kName[static_cast<std::size_t>(k)]) +
                              " not fitted: the rotor speeds never differ in the " +
@@ -360,19 +361,22 @@ MixingFit fitMixing(const PlatformLog& log, double b, const PlatformFitOptions& 
   }
 
   // Height bands of equal sample count; samples at one height never straddle two bands. The
-  // rows are put into height order once, so that each band's rows are contiguous.
-  std::vector<double> level_h(rows.size());
-  for (std::size_t j = 0; j < rows.size(); ++j) level_h[j] = log.h_m[idx[j]];
-  std::vector<std::size_t> order(rows.size());
+  // columns are put into height order once, so that each band's rows are contiguous.
+  std::vector<double> level_h(idx.size());
+  for (std::size_t j = 0; j < idx.size(); ++j) level_h[j] = log.h_m[idx[j]];
+  std::vector<std::size_t> order(idx.size());
   for (std::size_t j = 0; j < order.size(); ++j) order[j] = j;
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t c) { return level_h[a] < level_h[c]; });
   std::vector<double> sorted_h(order.size());
   std::vector<double> sorted_samples(order.size());
-  std::vector<Row> sorted_rows(order.size());
   for (std::size_t m = 0; m < order.size(); ++m) {
     sorted_h[m] = level_h[order[m]];
     sorted_samples[m] = log.samples(idx[order[m]]);
-    sorted_rows[m] = rows[order[m]];
+  }
+  std::vector<double> sorted(order.size());
+  for (auto* c : cols.all()) {
+    for (std::size_t m = 0; m < order.size(); ++m) sorted[m] = (*c)[order[m]];
+    c->swap(sorted);
   }
   for (const auto& [first, last] : detail::bandRanges(sorted_h, options.height_bands, sorted_samples)) {
     HeightBand hb;
@@ -387,10 +391,10 @@ MixingFit fitMixing(const PlatformLog& log, double b, const PlatformFitOptions& 
     hb.count = static_cast<std::size_t>(std::llround(samples));
     hb.h_mean_m = sum / samples;
     if (hb.count >= options.min_band_samples) {
-      hb.k_T_N_per_rpm2 = fitOne(0, sorted_rows, first, last, nullptr);
-      hb.k_TX_N_per_rpm2 = fitOne(1, sorted_rows, first, last, nullptr);
-      hb.k_TY_N_per_rpm2 = fitOne(2, sorted_rows, first, last, nullptr);
-      hb.k_I_Nm_per_rpm2 = fitOne(3, sorted_rows, first, last, nullptr);
+      hb.k_T_N_per_rpm2 = fitOne(0, first, last, nullptr);
+      hb.k_TX_N_per_rpm2 = fitOne(1, first, last, nullptr);
+      hb.k_TY_N_per_rpm2 = fitOne(2, first, last, nullptr);
+      hb.k_I_Nm_per_rpm2 = fitOne(3, first, last, nullptr);
     }
     out.bands.push_back(hb);
   }
