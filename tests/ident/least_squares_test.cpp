@@ -249,7 +249,7 @@ TEST(LeastSquares, RobustScaleIsTheMadOfAFullSelectionBitForBit) {
   };
   std::mt19937_64 rng(12);
   geaware::ident::RobustScale scale;
-  for (const std::size_t n : {1u, 2u, 3u, 10u, 8191u, 8192u, 50000u, 9000u, 7u}) {
+  for (const std::size_t n : {1u, 2u, 3u, 10u, 8191u, 8192u, 50000u, 9000u, 7u, 300001u, 100000u, 65536u}) {
     for (int kind = 0; kind < 6; ++kind) {
       const auto v = selectionCase(n, kind, rng);
       const double expected = oracle(v);

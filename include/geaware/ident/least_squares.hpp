@@ -191,11 +191,13 @@ class RobustScale {
   /// robustSigma(v), the same value bit for bit.
   [[nodiscard]] double sigma(std::span<const double> v);
   /// The k-th smallest (0-based) of v, k < v.size(): the value std::nth_element puts at
-  /// position k of a copy of v (for values without NaN, any exact selection gives it).
+  /// position k of a copy of v (for values without NaN, any exact selection gives it; of a −0
+  /// and a +0, which compare equal, either may come).
   [[nodiscard]] double kthSmallest(std::span<const double> v, std::size_t k);
 
  private:
   std::vector<double> window_;  ///< the values inside the sample's bracket
+  std::vector<double> inner_;   ///< the values inside a second bracket, within the window
   std::vector<double> values_;  ///< a copy of v when all of v must be selected from
 };
 
