@@ -3,10 +3,51 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <utility>
 
 #include "fit_support.hpp"
 
 namespace geaware::ident {
+
+namespace {
+
+/// The distinct values of round(x·1e4)/1e4 over the x ≤ top in h, ascending, with how often
+/// each occurs: what sorting those values and counting runs gives, without sorting them all
+/// (a platform logs many samples at few heights). Nothing when there are many distinct values
+/// or a −0 (which equals +0, so a sort may put either first) or a NaN: then sort.
+std::optional<std::pair<std::vector<double>, std::vector<std::size_t>>> distinctCounts(
+    const std::vector<double>& h, double top) {
+  constexpr std::size_t kMaxDistinct = 4096;
+  std::vector<double> distinct;
+  std::vector<std::size_t> count;
+  std::size_t last = 0;  // index of the previous value's entry: logs repeat heights in runs
+  for (const double x : h) {
+    if (!(x <= top)) {
+      if (std::isnan(x)) return std::nullopt;
+      continue;
+    }
+    const double v = std::round(x * 1e4) / 1e4;
+    if (v == 0.0 && std::signbit(v)) return std::nullopt;
+    if (!distinct.empty() && distinct[last] == v) {
+      ++count[last];
+      continue;
+    }
+    const auto it = std::lower_bound(distinct.begin(), distinct.end(), v);
+    last = static_cast<std::size_t>(it - distinct.begin());
+    if (it != distinct.end() && *it == v) {
+      ++count[last];
+      continue;
+    }
+    if (distinct.size() == kMaxDistinct) return std::nullopt;
+    distinct.insert(it, v);
+    count.insert(count.begin() + static_cast<std::ptrdiff_t>(last), 1);
+  }
+  if (distinct.empty()) return std::nullopt;
+  return std::pair{std::move(distinct), std::move(count)};
+}
+
+}  // namespace
 
 std::vector<double> chooseKnots(const std::vector<double>& h, const TableOptions& options,
                                 const std::string& source, const std::string& what) {
@@ -26,28 +67,48 @@ std::vector<double> chooseKnots(const std::vector<double>& h, const TableOptions
     return k;
   }
   // Distinct heights to 0.1 mm, with their sample counts.
-  std::vector<double> sorted;
-  sorted.reserve(h.size());
-  for (double x : h) {
-    if (x <= options.top_m) sorted.push_back(std::round(x * 1e4) / 1e4);
-  }
-  std::sort(sorted.begin(), sorted.end());
   std::vector<double> knots;
-  if (sorted.empty()) {
-    knots = {};
-  } else {
-    std::vector<double> distinct;
-    for (double x : sorted) {
-      if (distinct.empty() || x != distinct.back()) distinct.push_back(x);
-    }
+  const auto counted = distinctCounts(h, options.top_m);
+  if (counted) {
+    const auto& [distinct, count] = *counted;
     if (distinct.size() <= options.max_knots) {
-      knots = std::move(distinct);
+      knots = distinct;
     } else {
-      // Thin by sample count: knots at equally spaced quantiles of the samples.
+      // Thin by sample count: knots at equally spaced quantiles of the samples. sorted[r] of
+      // the sorted heights is the distinct height whose cumulative count first exceeds r.
+      std::size_t total = 0;
+      for (const std::size_t c : count) total += c;
       const std::size_t m = std::max<std::size_t>(options.max_knots, 2);
+      std::size_t d = 0;
+      std::size_t through = count[0];  // heights up to and including distinct[d]
       for (std::size_t q = 0; q < m; ++q) {
-        const double x = sorted[q * (sorted.size() - 1) / (m - 1)];
+        const std::size_t r = q * (total - 1) / (m - 1);
+        while (through <= r) through += count[++d];
+        const double x = distinct[d];
         if (knots.empty() || x > knots.back()) knots.push_back(x);
+      }
+    }
+  } else {
+    std::vector<double> sorted;
+    sorted.reserve(h.size());
+    for (double x : h) {
+      if (x <= options.top_m) sorted.push_back(std::round(x * 1e4) / 1e4);
+    }
+    std::sort(sorted.begin(), sorted.end());
+    if (!sorted.empty()) {
+      std::vector<double> distinct;
+      for (double x : sorted) {
+        if (distinct.empty() || x != distinct.back()) distinct.push_back(x);
+      }
+      if (distinct.size() <= options.max_knots) {
+        knots = std::move(distinct);
+      } else {
+        // Thin by sample count: knots at equally spaced quantiles of the samples.
+        const std::size_t m = std::max<std::size_t>(options.max_knots, 2);
+        for (std::size_t q = 0; q < m; ++q) {
+          const double x = sorted[q * (sorted.size() - 1) / (m - 1)];
+          if (knots.empty() || x > knots.back()) knots.push_back(x);
+        }
       }
     }
   }

@@ -6,7 +6,11 @@
 
 #include "geaware/ident/table_fit.hpp"
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -84,6 +88,54 @@ TEST(TableKnots, DistinctHeightsUpToTheTopOrThinnedByCount) {
   } catch (const ident::IdentError& e) {
     EXPECT_NE(std::string(e.what()).find("my.csv"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("at least 2"), std::string::npos) << e.what();
+  }
+}
+
+TEST(TableKnots, CountingDistinctHeightsGivesTheKnotsOfSortingThemAll) {
+  // The oracle: every height to 0.1 mm sorted, distinct runs, or quantiles by count. chooseKnots
+  // counts distinct heights instead (and sorts only when there are very many): the same knots,
+  // bit for bit, for few and many distinct heights, thinned or not, runs or shuffled.
+  const auto oracle = [](const std::vector<double>& h, const ident::TableOptions& o) {
+    std::vector<double> sorted;
+    for (const double x : h) {
+      if (x <= o.top_m) sorted.push_back(std::round(x * 1e4) / 1e4);
+    }
+    std::sort(sorted.begin(), sorted.end());
+    std::vector<double> distinct;
+    for (const double x : sorted) {
+      if (distinct.empty() || x != distinct.back()) distinct.push_back(x);
+    }
+    if (distinct.size() <= o.max_knots) return distinct;
+    std::vector<double> knots;
+    const std::size_t m = std::max<std::size_t>(o.max_knots, 2);
+    for (std::size_t q = 0; q < m; ++q) {
+      const double x = sorted[q * (sorted.size() - 1) / (m - 1)];
+      if (knots.empty() || x > knots.back()) knots.push_back(x);
+    }
+    return knots;
+  };
+  std::mt19937_64 rng(21);
+  for (const int levels : {2, 14, 37, 150, 5000}) {
+    std::uniform_int_distribution<int> level(0, levels - 1);
+    std::normal_distribution<double> jitter(0.0, 2e-5);
+    for (const std::size_t max_knots : {std::size_t{1}, std::size_t{2}, std::size_t{10}, std::size_t{120}}) {
+      std::vector<double> h(20000);
+      for (std::size_t i = 0; i < h.size(); ++i) {
+        // Runs of one height, or shuffled heights; each near a level, so rounding merges some.
+        const int l = i % 3 == 0 ? level(rng) : static_cast<int>(i / 400 % static_cast<std::size_t>(levels));
+        h[i] = std::abs(0.05 + 0.0137 * l + jitter(rng));
+      }
+      ident::TableOptions o;
+      o.top_m = 0.05 + 0.0137 * 0.8 * levels;
+      o.max_knots = max_knots;
+      const auto expected = oracle(h, o);
+      if (expected.size() < 2) continue;
+      const auto got = ident::chooseKnots(h, o, "log", "F_G");
+      ASSERT_EQ(got.size(), expected.size()) << levels << " levels, " << max_knots << " knots";
+      for (std::size_t k = 0; k < got.size(); ++k) {
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(got[k]), std::bit_cast<std::uint64_t>(expected[k])) << k;
+      }
+    }
   }
 }
 
