@@ -74,120 +74,6 @@ double scaleFloor(const std::vector<double>& y) {
   return kRelativeScaleFloor * std::sqrt(ss / static_cast<double>(y.size()));
 }
 
-namespace {
-
-struct Identity {
-  double operator()(double x) const noexcept { return x; }
-};
-
-/// The k-th smallest of f(v[i]) (0-based) when a sample brackets it; false otherwise (the
-/// caller then selects from all values). On many values, the order statistics of an evenly
-/// spaced sample of 1024 of them bracket the k-th in a window of about 1/8 of the values: one
-/// pass counts those below the window and copies those in it, and only the window is selected
-/// from. The pass has no data-dependent branch (every value of a block is written, the count
-/// advances only for those in the window): the window holds the same values in the same order
-/// as a pass with branches, so std::nth_element on it gives the same value whatever the values
-/// are (NaN and ties included).
-template <class F>
-bool selectInWindow(std::span<const double> v, std::size_t k, F f, std::vector<double>& window,
-                    std::vector<double>* inner, double& out) {
-  constexpr std::size_t kSample = 1024;
-  constexpr std::ptrdiff_t kMargin = 64;  // sample ranks either side: ~4 standard deviations
-  const std::size_t n = v.size();
-  if (n < 8 * kSample) return false;
-  std::array<double, kSample> sample{};
-  const std::size_t stride = n / kSample;
-  for (std::size_t i = 0; i < kSample; ++i) sample[i] = f(v[i * stride]);
-  std::sort(sample.begin(), sample.end());
-  const auto rank = static_cast<std::ptrdiff_t>(static_cast<double>(k) / static_cast<double>(n) * kSample);
-  constexpr double kUnbounded = std::numeric_limits<double>::infinity();
-  const double lo = rank - kMargin < 0 ? -kUnbounded : sample[static_cast<std::size_t>(rank - kMargin)];
-  const double hi = rank + kMargin >= static_cast<std::ptrdiff_t>(kSample) ? kUnbounded
-                                                                           : sample[static_cast<std::size_t>(rank + kMargin)];
-  if (window.size() < n) window.resize(n);
-  double* const w = window.data();
-  std::size_t below = 0;
-  std::size_t count = 0;
-  std::size_t nan = 0;
-  // Per block: flags and counts first (a loop without branches the compiler vectorizes), then,
-  // if any value of the block lies in the window, the copy.
-  constexpr std::size_t kBlock = 64;
-  std::array<unsigned char, kBlock> in{};
-  for (std::size_t first = 0; first < n; first += kBlock) {
-    const double* const b = v.data() + first;
-    const std::size_t m = std::min(kBlock, n - first);
-    std::size_t block_below = 0;
-    std::size_t block_in = 0;
-    std::size_t block_nan = 0;
-    for (std::size_t j = 0; j < m; ++j) {
-      const double x = f(b[j]);
-      block_nan += static_cast<unsigned char>(std::isnan(x));
-      const auto is_below = static_cast<unsigned char>(x < lo);
-      const auto is_in = static_cast<unsigned char>(static_cast<unsigned char>(!(x < lo)) & static_cast<unsigned char>(!(x > hi)));
-      in[j] = is_in;
-      block_below += is_below;
-      block_in += is_in;
-    }
-    below += block_below;
-    nan += block_nan;
-    if (block_in == 0) continue;
-    for (std::size_t j = 0; j < m; ++j) {
-      w[count] = f(b[j]);
-      count += in[j];
-    }
-  }
-  if (!(below <= k && k < below + count)) return false;
-  // A large window without NaN is bracketed once more, by a sample of its own values (`inner`
-  // holds the window's window). Without NaN the k-th smallest is one value whichever exact
-  // selection finds it (only a −0 and a +0, equal, may come out either way); with NaN the
-  // comparisons are no order, and only the same steps as before give the same value.
-  if (inner != nullptr && nan == 0 &&
-      selectInWindow(std::span<const double>(w, count), k - below, Identity{}, *inner, nullptr, out)) {
-    return true;
-  }
-  double* const at = w + (k - below);
-  std::nth_element(w, at, w + count);
-  out = *at;
-  return true;
-}
-
-}  // namespace
-
-double RobustScale::kthSmallest(std::span<const double> v, std::size_t k) {
-  double out = 0.0;
-  if (selectInWindow(v, k, Identity{}, window_, &inner_, out)) return out;
-  values_.assign(v.begin(), v.end());
-  const auto at = values_.begin() + static_cast<std::ptrdiff_t>(k);
-  std::nth_element(values_.begin(), at, values_.end());
-  return *at;
-}
-
-// The steps of robustSigma on a copy of v (median, |v − median| in place, its median), each
-// selection as kthSmallest does it; the copy is made only where a selection reorders it.
-double RobustScale::sigma(std::span<const double> v) {
-  if (v.empty()) return kNaN;
-  const std::size_t mid = v.size() / 2;
-  std::span<const double> current = v;  // the copy's contents before the second step
-  double median = 0.0;
-  if (!selectInWindow(v, mid, Identity{}, window_, &inner_, median)) {
-    values_.assign(v.begin(), v.end());
-    std::nth_element(values_.begin(), values_.begin() + static_cast<std::ptrdiff_t>(mid), values_.end());
-    median = values_[mid];
-    current = values_;
-  }
-  const auto deviation = [median](double x) { return std::abs(x - median); };
-  double mad = 0.0;
-  if (!selectInWindow(current, mid, deviation, window_, &inner_, mad)) {
-    if (current.data() != values_.data()) values_.assign(v.begin(), v.end());
-    for (double& x : values_) x = deviation(x);
-    std::nth_element(values_.begin(), values_.begin() + static_cast<std::ptrdiff_t>(mid), values_.end());
-    mad = values_[mid];
-  }
-  return 1.482602218505602 * mad;
-}
-
-double robustSigma(std::vector<double> v) { return RobustScale().sigma(v); }
-
 // ------------------------------------------------------------------------------------ linear
 
 namespace {
@@ -229,9 +115,10 @@ class DenseDesign {
     for (std::size_t i = 0; i < y.size(); ++i) y[i] = data_[i * stride_ + static_cast<std::size_t>(p_)];
     return scaleFloor(y);
   }
-  /// Lower triangle of Σ m·x·xᵀ and Σ m·x·y.
-  void normal(const std::vector<double>& m, Eigen::MatrixXd& A, Eigen::VectorXd& b) const {
-    dispatch([&]<int P>() { normalFixed<P>(m, A, b); });
+  /// Lower triangle of Σ m·x·xᵀ and Σ m·x·y, m of sample i from weight(i).
+  template <class Weight>
+  void normal(const Weight& weight, Eigen::MatrixXd& A, Eigen::VectorXd& b) const {
+    dispatch([&]<int P>() { normalFixed<P>(weight, A, b); });
   }
   void residuals(const Eigen::VectorXd& beta, std::vector<double>& r) const {
     dispatch([&]<int P>() { residualsFixed<P>(beta, r); });
@@ -258,8 +145,8 @@ class DenseDesign {
       default: f.template operator()<8>(); return;
     }
   }
-  template <int P>
-  void normalFixed(const std::vector<double>& m, Eigen::MatrixXd& A, Eigen::VectorXd& b) const {
+  template <int P, class Weight>
+  void normalFixed(const Weight& weight, Eigen::MatrixXd& A, Eigen::VectorXd& b) const {
     static_assert(P >= 1 && P <= kMaxParameters);
     std::array<double, P * P> a{};
     std::array<double, P> bb{};
@@ -268,10 +155,12 @@ class DenseDesign {
       for (int c = 0; c <= i; ++c) a[i * P + c] = A(i, c);
     }
     const double* d = data_.data();
-    for (std::size_t i = 0; i < m.size(); ++i, d += P + 1) {
-      if (m[i] == 0.0) continue;
+    const std::size_t n = samples();
+    for (std::size_t i = 0; i < n; ++i, d += P + 1) {
+      const double mi = weight(i);
+      if (mi == 0.0) continue;
       for (int k = 0; k < P; ++k) {
-        const double mk = m[i] * d[k];
+        const double mk = mi * d[k];
         bb[k] += mk * d[P];
         for (int c = 0; c <= k; ++c) a[k * P + c] += mk * d[c];
       }
@@ -329,11 +218,13 @@ class SparseDesign {
   }
   [[nodiscard]] std::size_t samples() const noexcept { return y_.size(); }
   [[nodiscard]] double floor() const { return scaleFloor(y_); }
-  void normal(const std::vector<double>& m, Eigen::MatrixXd& A, Eigen::VectorXd& b) const {
-    for (std::size_t i = 0; i < m.size(); ++i) {
-      if (m[i] == 0.0) continue;
+  template <class Weight>
+  void normal(const Weight& weight, Eigen::MatrixXd& A, Eigen::VectorXd& b) const {
+    for (std::size_t i = 0; i < y_.size(); ++i) {
+      const double mi = weight(i);
+      if (mi == 0.0) continue;
       for (std::size_t e = start_[i]; e < start_[i + 1]; ++e) {
-        const double me = m[i] * value_[e];
+        const double me = mi * value_[e];
         b(index_[e]) += me * y_[i];
         for (std::size_t f = start_[i]; f < start_[i + 1]; ++f) {
           // Lower triangle only (row ≥ column), as the dense design fills it.
@@ -357,28 +248,6 @@ class SparseDesign {
   std::vector<double> y_;
 };
 
-/// m[i] = lossWeight(loss, r[i]/threshold), with the loss chosen once, not per sample. Huber's
-/// weight is 1 where |u| = |r|/threshold ≤ 1; with a finite threshold > 0 that holds wherever
-/// |r| ≤ threshold (division rounds monotonically and 1 is a double), so only the others
-/// need the two divisions of lossWeight.
-void lossWeights(RobustLoss loss, const std::vector<double>& r, double threshold, std::vector<double>& m) {
-  switch (loss) {
-    case RobustLoss::kHuber: {
-      const bool finite = threshold > 0.0 && threshold < std::numeric_limits<double>::infinity();
-      for (std::size_t i = 0; i < r.size(); ++i) {
-        m[i] = finite && std::abs(r[i]) <= threshold ? 1.0 : lossWeight(RobustLoss::kHuber, r[i] / threshold);
-      }
-      return;
-    }
-    case RobustLoss::kCauchy:
-      for (std::size_t i = 0; i < r.size(); ++i) m[i] = lossWeight(RobustLoss::kCauchy, r[i] / threshold);
-      return;
-    case RobustLoss::kNone:
-      for (std::size_t i = 0; i < r.size(); ++i) m[i] = lossWeight(RobustLoss::kNone, r[i] / threshold);
-      return;
-  }
-}
-
 /// Steps 1–4 of the header on a design (DenseDesign or SparseDesign) with p parameters.
 template <class Design>
 LeastSquaresFit robustLinear(const Design& design, int p, const RobustOptions& robust) {
@@ -400,11 +269,13 @@ LeastSquaresFit robustLinear(const Design& design, int p, const RobustOptions& r
   const double floor = design.floor();
   RobustScale robust_scale;
   auto scale = [&] { return std::max(robust_scale.sigma(r), floor); };
-  // Solves the normal equations with multipliers m, then fills r. False when singular.
-  auto solve = [&]() -> bool {
+  // Solves the normal equations with multipliers weight(i) (by default m), then fills r. False
+  // when singular.
+  const auto stored = [&m](std::size_t i) { return m[i]; };
+  auto solve = [&](const auto& weight) -> bool {
     Eigen::MatrixXd A = Eigen::MatrixXd::Zero(p, p);
     Eigen::VectorXd b = Eigen::VectorXd::Zero(p);
-    design.normal(m, A, b);
+    design.normal(weight, A, b);
     A = A.template selfadjointView<Eigen::Lower>();
     if (!invertNormal(A, A_inv, &fit.stats.condition_number)) return false;
     beta = A_inv * b;
@@ -412,10 +283,28 @@ LeastSquaresFit robustLinear(const Design& design, int p, const RobustOptions& r
     return true;
   };
 
-  if (!solve()) {
+  if (!solve(stored)) {
     fit.message = kSingular;
     return fit;
   }
+  // The IRLS multipliers lossWeight(loss, r[i]/threshold) of the residuals r before a solve,
+  // computed as the normal equations take them. Huber's is 1 where |u| = |r|/threshold ≤ 1;
+  // with a finite threshold > 0 that holds wherever |r| ≤ threshold (division rounds
+  // monotonically and 1 is a double), so only the others need lossWeight's two divisions.
+  auto solveReweighted = [&](double threshold) -> bool {
+    switch (robust.loss) {
+      case RobustLoss::kHuber: {
+        const bool finite = threshold > 0.0 && threshold < std::numeric_limits<double>::infinity();
+        return solve([&](std::size_t i) {
+          return finite && std::abs(r[i]) <= threshold ? 1.0 : lossWeight(RobustLoss::kHuber, r[i] / threshold);
+        });
+      }
+      case RobustLoss::kCauchy:
+        return solve([&](std::size_t i) { return lossWeight(RobustLoss::kCauchy, r[i] / threshold); });
+      case RobustLoss::kNone: break;
+    }
+    return solve([&](std::size_t i) { return lossWeight(RobustLoss::kNone, r[i] / threshold); });
+  };
   // 1. Robust fit by iteratively reweighted least squares. It only has to separate the
   //    outliers from the rest (step 3 refits), so it stops at a small fraction of a standard
   //    error; the residual scale is re-estimated in the first iterations only.
@@ -425,9 +314,8 @@ LeastSquaresFit robustLinear(const Design& design, int p, const RobustOptions& r
       if (iter < 3) s = scale();
       if (!(s > 0.0)) break;  // exact fit: nothing to down-weight
       const double threshold = robust.loss_scale * s;
-      lossWeights(robust.loss, r, threshold, m);
       const Eigen::VectorXd previous = beta;
-      if (!solve()) {
+      if (!solveReweighted(threshold)) {
         fit.message = kSingular;
         return fit;
       }
@@ -455,7 +343,7 @@ LeastSquaresFit robustLinear(const Design& design, int p, const RobustOptions& r
     fit.message = "too few samples left after removing outliers";
     return fit;
   }
-  if (!solve()) {
+  if (!solve(stored)) {
     fit.message = kSingular;
     return fit;
   }
