@@ -35,13 +35,31 @@ bool selectInWindow(std::span<const double> v, std::size_t k, F f, std::vector<d
   if (n < 8 * kSample) return false;
   std::array<double, kSample> sample{};
   const std::size_t stride = n / kSample;
-  for (std::size_t i = 0; i < kSample; ++i) sample[i] = f(v[i * stride]);
-  std::sort(sample.begin(), sample.end());
+  bool sample_nan = false;
+  for (std::size_t i = 0; i < kSample; ++i) {
+    sample[i] = f(v[i * stride]);
+    sample_nan = sample_nan || std::isnan(sample[i]);
+  }
   const auto rank = static_cast<std::ptrdiff_t>(static_cast<double>(k) / static_cast<double>(n) * kSample);
+  const std::ptrdiff_t lo_rank = rank - kMargin;
+  const std::ptrdiff_t hi_rank = rank + kMargin;
+  constexpr auto kSampleRanks = static_cast<std::ptrdiff_t>(kSample);
+  // The sample's order statistics at lo_rank and hi_rank: selected, which gives the values a
+  // sort gives (the bounds are only compared with, so a −0 for a +0 changes nothing); a sample
+  // with NaN is sorted, as it always was.
+  if (sample_nan) {
+    std::sort(sample.begin(), sample.end());
+  } else {
+    auto rest = sample.begin();
+    if (lo_rank >= 0) {
+      std::nth_element(sample.begin(), sample.begin() + lo_rank, sample.end());
+      rest = sample.begin() + lo_rank + 1;
+    }
+    if (hi_rank < kSampleRanks) std::nth_element(rest, sample.begin() + hi_rank, sample.end());
+  }
   constexpr double kUnbounded = std::numeric_limits<double>::infinity();
-  const double lo = rank - kMargin < 0 ? -kUnbounded : sample[static_cast<std::size_t>(rank - kMargin)];
-  const double hi = rank + kMargin >= static_cast<std::ptrdiff_t>(kSample) ? kUnbounded
-                                                                           : sample[static_cast<std::size_t>(rank + kMargin)];
+  const double lo = lo_rank < 0 ? -kUnbounded : sample[static_cast<std::size_t>(lo_rank)];
+  const double hi = hi_rank >= kSampleRanks ? kUnbounded : sample[static_cast<std::size_t>(hi_rank)];
   if (window.size() < n) window.resize(n);
   double* const w = window.data();
   std::size_t below = 0;
