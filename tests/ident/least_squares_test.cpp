@@ -5,6 +5,7 @@
 #include "geaware/ident/least_squares.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -256,6 +257,78 @@ TEST(LeastSquares, RobustScaleIsTheMadOfAFullSelectionBitForBit) {
       const double got = scale.sigma(v);
       EXPECT_EQ(std::bit_cast<std::uint64_t>(got), std::bit_cast<std::uint64_t>(expected))
           << "n " << n << ", kind " << kind << ": " << got << " vs " << expected;
+    }
+  }
+}
+
+// robustSigma as it was before RobustScale (a sorted sample's bracket, a window copied with
+// branches, std::nth_element on it or on all values): the oracle where values are NaN, which
+// no order ranks, so that only the same steps give the same value.
+double previousKth(std::vector<double>& v, std::size_t k, std::vector<double>& window) {
+  constexpr std::size_t kSample = 1024;
+  constexpr std::ptrdiff_t kMargin = 64;
+  const std::size_t n = v.size();
+  if (n >= 8 * kSample) {
+    std::array<double, kSample> sample{};
+    const std::size_t stride = n / kSample;
+    for (std::size_t i = 0; i < kSample; ++i) sample[i] = v[i * stride];
+    std::sort(sample.begin(), sample.end());
+    const auto rank = static_cast<std::ptrdiff_t>(static_cast<double>(k) / static_cast<double>(n) * kSample);
+    constexpr double kUnbounded = std::numeric_limits<double>::infinity();
+    const double lo = rank - kMargin < 0 ? -kUnbounded : sample[static_cast<std::size_t>(rank - kMargin)];
+    const double hi = rank + kMargin >= static_cast<std::ptrdiff_t>(kSample) ? kUnbounded
+                                                                             : sample[static_cast<std::size_t>(rank + kMargin)];
+    std::size_t below = 0;
+    window.clear();
+    for (const double x : v) {
+      if (x < lo) {
+        ++below;
+      } else if (!(x > hi)) {
+        window.push_back(x);
+      }
+    }
+    if (below <= k && k < below + window.size()) {
+      const auto at = window.begin() + static_cast<std::ptrdiff_t>(k - below);
+      std::nth_element(window.begin(), at, window.end());
+      return *at;
+    }
+  }
+  const auto at = v.begin() + static_cast<std::ptrdiff_t>(k);
+  std::nth_element(v.begin(), at, v.end());
+  return *at;
+}
+
+double previousRobustSigma(std::vector<double> v) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const std::size_t mid = v.size() / 2;
+  std::vector<double> window;
+  const double median = previousKth(v, mid, window);
+  for (double& x : v) x = std::abs(x - median);
+  return 1.482602218505602 * previousKth(v, mid, window);
+}
+
+TEST(LeastSquares, RobustScaleWithNaNTakesThePreviousStepsBitForBit) {
+  // Residuals with NaN (a few, many, all; in the sample or only outside it) and without: the
+  // value of the previous implementation, bit for bit (NaN payload included).
+  std::mt19937_64 rng(13);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  geaware::ident::RobustScale scale;
+  for (const std::size_t n : {1u, 5u, 100u, 8192u, 20000u, 100000u, 300001u}) {
+    for (const double fraction : {0.0, 0.001, 0.05, 0.5, 1.0}) {
+      std::vector<double> v(n);
+      for (double& x : v) x = unit(rng) < fraction ? nan : normal(rng);
+      const double expected = previousRobustSigma(v);
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(scale.sigma(v)), std::bit_cast<std::uint64_t>(expected))
+          << "n " << n << ", NaN fraction " << fraction;
+    }
+    if (n >= 8192) {  // one NaN, off the sampled positions (n / 1024 apart)
+      std::vector<double> v(n);
+      for (double& x : v) x = normal(rng);
+      v[n / 1024 + 1] = nan;
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(scale.sigma(v)),
+                std::bit_cast<std::uint64_t>(previousRobustSigma(v))) << "n " << n << ", one NaN";
     }
   }
 }
