@@ -109,11 +109,16 @@ class DenseDesign {
     data_.resize(k);
   }
   [[nodiscard]] std::size_t samples() const noexcept { return data_.size() / stride_; }
-  /// The robust scale's floor from the √w-scaled outputs.
+  /// The robust scale's floor from the √w-scaled outputs: scaleFloor's sum, read in place.
   [[nodiscard]] double floor() const {
-    std::vector<double> y(samples());
-    for (std::size_t i = 0; i < y.size(); ++i) y[i] = data_[i * stride_ + static_cast<std::size_t>(p_)];
-    return scaleFloor(y);
+    const std::size_t n = samples();
+    if (n == 0) return 0.0;
+    double ss = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double v = data_[i * stride_ + static_cast<std::size_t>(p_)];
+      ss += v * v;
+    }
+    return kRelativeScaleFloor * std::sqrt(ss / static_cast<double>(n));
   }
   /// Lower triangle of Σ m·x·xᵀ and Σ m·x·y, m of sample i from weight(i).
   template <class Weight>

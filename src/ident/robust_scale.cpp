@@ -27,8 +27,8 @@ struct Identity {
 /// as a pass with branches, so std::nth_element on it gives the same value whatever the values
 /// are (NaN and ties included).
 template <class F>
-bool selectInWindow(std::span<const double> v, std::size_t k, F f, std::vector<double>& window,
-                    std::vector<double>* inner, double& out) {
+bool selectInWindow(std::span<const double> v, std::size_t k, F f, detail::ValueBuffer& window,
+                    detail::ValueBuffer* inner, double& out) {
   constexpr std::size_t kSample = 1024;
   constexpr std::ptrdiff_t kMargin = 64;  // sample ranks either side: ~4 standard deviations
   const std::size_t n = v.size();
@@ -60,8 +60,7 @@ bool selectInWindow(std::span<const double> v, std::size_t k, F f, std::vector<d
   constexpr double kUnbounded = std::numeric_limits<double>::infinity();
   const double lo = lo_rank < 0 ? -kUnbounded : sample[static_cast<std::size_t>(lo_rank)];
   const double hi = hi_rank >= kSampleRanks ? kUnbounded : sample[static_cast<std::size_t>(hi_rank)];
-  if (window.size() < n) window.resize(n);
-  double* const w = window.data();
+  double* const w = window.get(n);
   std::size_t below = 0;
   std::size_t count = 0;
   std::size_t nan = 0;

@@ -21,6 +21,7 @@
 #include <cstddef>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -184,6 +185,25 @@ using SparseLinearRow = std::function<bool(std::size_t i, int* index, double* va
 /// Robust standard deviation 1.4826·median(|v − median(v)|) (normal-consistent MAD).
 [[nodiscard]] double robustSigma(std::vector<double> v);
 
+namespace detail {
+/// Room for n doubles, grown as needed and never initialized: a pass that writes only the
+/// first part touches (and pays for) only those pages.
+class ValueBuffer {
+ public:
+  [[nodiscard]] double* get(std::size_t n) {
+    if (size_ < n) {
+      data_ = std::make_unique_for_overwrite<double[]>(n);
+      size_ = n;
+    }
+    return data_.get();
+  }
+
+ private:
+  std::unique_ptr<double[]> data_;
+  std::size_t size_ = 0;
+};
+}  // namespace detail
+
 /// robustSigma for many vectors in a row (the iterations of one fit), with its buffers kept
 /// between calls: after the first call it allocates nothing, and v is read, not copied.
 class RobustScale {
@@ -196,8 +216,8 @@ class RobustScale {
   [[nodiscard]] double kthSmallest(std::span<const double> v, std::size_t k);
 
  private:
-  std::vector<double> window_;  ///< the values inside the sample's bracket
-  std::vector<double> inner_;   ///< the values inside a second bracket, within the window
+  detail::ValueBuffer window_;  ///< the values inside the sample's bracket
+  detail::ValueBuffer inner_;   ///< the values inside a second bracket, within the window
   std::vector<double> values_;  ///< a copy of v when all of v must be selected from
 };
 
