@@ -151,18 +151,20 @@ TEST(LeastSquares, RobustSigmaIsTheNormalConsistentMad) {
   EXPECT_NEAR(geaware::ident::robustSigma({1.0, 2.0, 3.0, 4.0, 100.0}), 1.482602218505602, 1e-12);
 }
 
+/// The oracle of the robust scale: the upper median and the MAD, each by a full std::nth_element.
+double madByFullSelection(std::vector<double> v) {
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  const double median = *mid;
+  for (double& x : v) x = std::abs(x - median);
+  std::nth_element(v.begin(), mid, v.end());
+  return 1.482602218505602 * *mid;
+}
+
 TEST(LeastSquares, RobustSigmaIsExactlyTheMedianOfAbsoluteDeviations) {
   // The oracle: the upper median and the MAD by a full std::nth_element. robustSigma selects
   // from a window bracketed by a sample on large inputs; the value must be the same, exactly,
   // whatever the values' order and distribution (sorted, ties, outliers, a narrow window miss).
-  const auto oracle = [](std::vector<double> v) {
-    const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-    std::nth_element(v.begin(), mid, v.end());
-    const double median = *mid;
-    for (double& x : v) x = std::abs(x - median);
-    std::nth_element(v.begin(), mid, v.end());
-    return 1.482602218505602 * *mid;
-  };
   std::mt19937_64 rng(5);
   std::normal_distribution<double> normal(0.0, 1.0);
   std::uniform_int_distribution<int> small(0, 3);
@@ -176,7 +178,7 @@ TEST(LeastSquares, RobustSigmaIsExactlyTheMedianOfAbsoluteDeviations) {
       cases[4][i] = i < n / 2 ? 0.0 : 1.0 + static_cast<double>(i);  // half exact zeros
     }
     for (std::size_t c = 0; c < cases.size(); ++c) {
-      EXPECT_EQ(geaware::ident::robustSigma(cases[c]), oracle(cases[c])) << "n " << n << ", case " << c;
+      EXPECT_EQ(geaware::ident::robustSigma(cases[c]), madByFullSelection(cases[c])) << "n " << n << ", case " << c;
     }
   }
 }
@@ -240,20 +242,12 @@ TEST(LeastSquares, RobustScaleIsTheMadOfAFullSelectionBitForBit) {
   // full std::nth_element on each, bit for bit, on the mixtures above (ties, ±0, infinities, a
   // sample whose bracket misses) and sizes below and above the sampled window's 8192. (The
   // deviations are |x − median|, never −0, so any exact selection gives the same bits.)
-  const auto oracle = [](std::vector<double> v) {
-    const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-    std::nth_element(v.begin(), mid, v.end());
-    const double median = *mid;
-    for (double& x : v) x = std::abs(x - median);
-    std::nth_element(v.begin(), mid, v.end());
-    return 1.482602218505602 * *mid;
-  };
   std::mt19937_64 rng(12);
   geaware::ident::RobustScale scale;
   for (const std::size_t n : {1u, 2u, 3u, 10u, 8191u, 8192u, 50000u, 9000u, 7u, 300001u, 100000u, 65536u}) {
     for (int kind = 0; kind < 6; ++kind) {
       const auto v = selectionCase(n, kind, rng);
-      const double expected = oracle(v);
+      const double expected = madByFullSelection(v);
       const double got = scale.sigma(v);
       EXPECT_EQ(std::bit_cast<std::uint64_t>(got), std::bit_cast<std::uint64_t>(expected))
           << "n " << n << ", kind " << kind << ": " << got << " vs " << expected;
