@@ -36,8 +36,29 @@ std::filesystem::path resolve(const std::filesystem::path& base, const std::stri
   return path.is_absolute() ? path : base / path;
 }
 
-/// Names become parts of keys and file names: printable, no '/' (the key's separator) and
-/// no ',' (the file name's), at most 64 bytes.
+/// Whether `text` is UTF-8: the records are JSON, which holds UTF-8 text only (a record whose
+/// key were not would never be read back as that key's, and its sweep never finish).
+bool isUtf8(const std::string& text) {
+  for (std::size_t i = 0; i < text.size();) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    const std::size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xe ? 3 : (c >> 3) == 0x1e ? 4 : 0;
+    if (n == 0 || i + n > text.size()) return false;
+    std::uint32_t cp = n == 1 ? c : c & (0x7fu >> n);
+    for (std::size_t k = 1; k < n; ++k) {
+      const auto cc = static_cast<unsigned char>(text[i + k]);
+      if ((cc >> 6) != 0x2) return false;
+      cp = (cp << 6) | (cc & 0x3fu);
+    }
+    // Overlong forms, UTF-16 surrogates and code points past U+10FFFF are not UTF-8.
+    static constexpr std::uint32_t kLeast[] = {0, 0, 0x80, 0x800, 0x10000};
+    if (cp < kLeast[n] || (cp >= 0xd800 && cp <= 0xdfff) || cp > 0x10ffff) return false;
+    i += n;
+  }
+  return true;
+}
+
+/// Names become parts of keys and file names: UTF-8, printable, no '/' (the key's separator)
+/// and no ',' (the file name's), at most 64 bytes.
 void checkName(io::MapReader& m, const std::string& key, const std::string& name) {
   if (name.empty()) {
     m.problem(key, "expected a non-empty name");
@@ -45,6 +66,15 @@ void checkName(io::MapReader& m, const std::string& key, const std::string& name
   }
   if (name.size() > 64) {
     m.problem(key, "got a name of " + std::to_string(name.size()) + " bytes, expected at most 64");
+    return;
+  }
+  if (!isUtf8(name)) {
+    std::string shown;  // the bytes that are not ASCII as \xNN
+    for (const char c : name) {
+      const auto u = static_cast<unsigned char>(c);
+      shown += u >= 0x20 && u < 0x7f ? std::string(1, c) : fmt::format("\\x{:02X}", u);
+    }
+    m.problem(key, "got '" + shown + "', not UTF-8 text: expected a UTF-8 name (save the sweep file as UTF-8)");
     return;
   }
   for (const char c : name) {
@@ -56,14 +86,15 @@ void checkName(io::MapReader& m, const std::string& key, const std::string& name
   }
 }
 
+/// `remedy`: what the message tells to do about a name listed twice.
 template <typename T, typename Name>
-void checkUnique(io::MapReader& root, const std::string& list, const std::vector<T>& items,
-                 Name name) {
+void checkUnique(io::MapReader& root, const std::string& list, const std::vector<T>& items, Name name,
+                 const char* remedy = "names must be unique: give a 'name'") {
   std::set<std::string> seen;
   for (std::size_t i = 0; i < items.size(); ++i) {
     if (!seen.insert(name(items[i])).second) {
       root.problem(list + "[" + std::to_string(i) + "]",
-                   "'" + name(items[i]) + "' is listed twice (names must be unique: give a 'name')");
+                   "'" + name(items[i]) + "' is listed twice (" + remedy + ")");
     }
   }
 }
@@ -206,7 +237,11 @@ SweepScenario readScenario(io::MapReader& m, const std::filesystem::path& base, 
     }
   }
   s.name = m.has("name") ? m.text("name") : default_name;
-  if (m.has("name")) checkName(m, "name", s.name);
+  if (m.has("name")) {
+    checkName(m, "name", s.name);
+  } else if (!isUtf8(s.name)) {
+    m.problem("file", "the file's name is not UTF-8 text, and it would name the scenario: give a UTF-8 'name'");
+  }
   m.rejectUnknownKeys();
   return s;
 }
@@ -301,7 +336,8 @@ SweepSpec parseSweepYaml(std::string_view yaml_text, const std::string& source,
       }
       s.controllers.push_back({control::configurationName(p), p});
     }
-    checkUnique(root, "controllers", s.controllers, [](const SuiteController& c) { return c.name; });
+    checkUnique(root, "controllers", s.controllers, [](const SuiteController& c) { return c.name; },
+                "expected each configuration once");
   }
   if (root.has("controller_params")) {
     const std::string file = root.text("controller_params");

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -181,3 +182,29 @@ TEST(SweepFile, AFaultItemNamesACaseOfTheFaultSuite) {
   expectProblem(replaced(t, "fault: motor 50%", "fault: motor 40%"), lineOf(t, "motor 50%"), "perturbations[2].fault",
                 "expected a case of the fault suite");
 }
+
+TEST(SweepFile, ANameThatIsNotUtf8IsRefusedAtItsLine) {
+  // A Latin-1 'é' would become a key the records (JSON, UTF-8) cannot hold: the sweep could
+  // never finish. Refused before any work, the bytes shown; UTF-8 names are fine.
+  const std::string t = sweep64();
+  expectProblem(replaced(t, "name: windy}", "name: w\xE9t}"), lineOf(t, "name: windy"), "perturbations[3].name",
+                "got 'w\\xE9t', not UTF-8 text");
+  expectProblem(replaced(t, "name: slow-high}", "name: \xC0\xAF}"), lineOf(t, "slow-high"), "scenarios[1].name",
+                "not UTF-8");  // an overlong '/'
+  EXPECT_EQ(parse(replaced(t, "name: windy}", "name: w\xC3\xA9t}")).cases[3].name, "w\xC3\xA9t");
+  // A scenario file whose name is not UTF-8 would name its scenario: a 'name' is asked for.
+  const geaware::sweep_test::TempDir d("sweep-name");
+  const std::string stem = "caf\xE9";
+  std::filesystem::copy_file(sourceDir() / "config/scenarios/lemniscate_low.yaml", d.path() / (stem + ".yaml"));
+  const std::string item = "{type: file, file: " + (d.path() / stem).string() + ".yaml";
+  const std::string with_file = replaced(t, "{type: lemniscate, height_m: 1.0", item + "}\n  - {type: lemniscate, height_m: 1.0");
+  expectProblem(with_file, lineOf(t, "slow-high"), "scenarios[1].file", "give a UTF-8 'name'");
+  EXPECT_EQ(parse(replaced(with_file, item + "}", item + ", name: cafe}")).scenarios[1].name, "cafe");
+}
+
+TEST(SweepFile, AConfigurationListedTwiceIsNotToldToTakeAName) {
+  const std::string t = sweep64();
+  expectProblem(replaced(t, "  - indi:none\n", "  - recommended\n"), lineOf(t, "  - indi:none"), "controllers[1]",
+                "'recommended' is listed twice (expected each configuration once)");
+}
+
