@@ -41,12 +41,17 @@ std::string readSmallFile(const fs::path& p) {
   return in ? os.str() : std::string();
 }
 
-/// The record in `text` when it is one object whose "key" is `key`; null otherwise.
+/// The record in `text` when it is one object whose "key" is `key` and that holds every member
+/// a record has (sweepRecord); null otherwise (a file cut short, another key's, not a record).
 io::Json parseRecord(const std::string& text, const std::string& key) {
   io::Json j = io::Json::parse(text, nullptr, false);
   if (j.is_discarded() || !j.is_object()) return nullptr;
   const auto it = j.find("key");
   if (it == j.end() || !it->is_string() || it->get<std::string>() != key) return nullptr;
+  for (const char* member : {"case", "controller", "scenario", "seed", "struck", "strike_t_s", "rmse_all_cm",
+                             "rmse_xy_cm", "rmse_z_cm", "max_cm", "guard_active_s", "simulated_s"}) {
+    if (!j.contains(member)) return nullptr;
+  }
   return j;
 }
 
@@ -72,12 +77,28 @@ std::vector<std::string> missingSweepKeys(const SweepSpec& spec, const fs::path&
 void prepareSweepDirectory(const SweepSpec& spec, const fs::path& dir) {
   (void)io::checkOutputDirectory("--out", dir.string());
   std::error_code ec;
+  const fs::path id = dir / "sweep.sha256";
+  const fs::path results = dir / "results.json";
+  if (fs::exists(results, ec) && !fs::is_regular_file(results, ec)) {
+    throw io::OutputError(fmt::format("--out '{}': {} is not a regular file; expected the merged results there",
+                                      dir.string(), results.string()));
+  }
+  if (!fs::exists(id, ec)) {
+    // Not a sweep's directory (yet): its results.json and records would be someone else's,
+    // overwritten by the merge or merged as this sweep's.
+    const bool records = fs::is_directory(dir / "flights", ec) && !fs::is_empty(dir / "flights", ec);
+    if (fs::exists(results, ec) || records) {
+      throw io::OutputError(fmt::format("--out '{}': holds {} and no sweep.sha256: not the results directory of "
+                                        "a sweep, and a sweep would overwrite or merge what it holds; expected "
+                                        "a new or empty directory (nothing was changed)",
+                                        dir.string(), records ? (dir / "flights").string() + "/…" : results.string()));
+    }
+  }
   fs::create_directories(dir / "flights", ec);
   if (ec) {
     throw io::OutputError(fmt::format("--out '{}': cannot create {}: {}", dir.string(),
                                       (dir / "flights").string(), ec.message()));
   }
-  const fs::path id = dir / "sweep.sha256";
   const std::string line = spec.fingerprint + "\n";
   if (fs::exists(id, ec)) {
     const std::string old = readSmallFile(id);

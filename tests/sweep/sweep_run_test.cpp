@@ -25,6 +25,7 @@
 #include "geaware/experiments/world_setup.hpp"
 #include "geaware/io/config_error.hpp"
 #include "geaware/io/json.hpp"
+#include "geaware/io/output_file.hpp"
 #include "geaware/io/vehicle_file.hpp"
 #include "geaware/traj/lemniscate.hpp"
 #include "sweep_support.hpp"
@@ -256,4 +257,49 @@ TEST(SweepRun, AFaultKeyFliesTheFaultSuitesFlightBitForBit) {
   EXPECT_GT(f.flight.max_cm, 0.0);
   // And it is not the unbroken flight.
   EXPECT_NE(record["rmse_all_cm"].get<double>(), r.cells[0].flights.at(0).flight.rmse_all_cm);
+}
+
+TEST(SweepRun, ADirectoryThatIsNoSweepsIsRefusedAndLeftAsItWas) {
+  // A results.json or records of unknown origin (no sweep.sha256): the merge would overwrite the
+  // one and merge the others, so the directory is refused and nothing in it changes. Other
+  // files are the user's to keep beside the sweep's.
+  TempDir d("sweep-f");
+  const fs::path mine = d.path() / "results.json";
+  std::ofstream(mine) << "{\"mine\": true}\n";
+  try {
+    ex::prepareSweepDirectory(spec64(), d.path());
+    FAIL() << "a directory holding someone's results.json was taken";
+  } catch (const geaware::io::OutputError& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("results.json and no sweep.sha256"));
+  }
+  EXPECT_EQ(slurp(mine), "{\"mine\": true}\n");
+  EXPECT_FALSE(fs::exists(d.path() / "sweep.sha256"));
+  EXPECT_FALSE(fs::exists(d.path() / "flights"));
+
+  fs::remove(mine);
+  fs::create_directories(d.path() / "flights");
+  const std::string key = ex::sweepKeys(spec64()).front();
+  std::ofstream(ex::sweepFlightPath(d.path(), key)) << "{}\n";
+  EXPECT_THROW(ex::prepareSweepDirectory(spec64(), d.path()), geaware::io::OutputError);
+  EXPECT_FALSE(fs::exists(d.path() / "sweep.sha256"));
+
+  fs::remove(ex::sweepFlightPath(d.path(), key));  // an empty flights/ (a run stopped at once)
+  std::ofstream(d.path() / "notes.txt") << "mine\n";
+  ex::prepareSweepDirectory(spec64(), d.path());
+  EXPECT_TRUE(fs::exists(d.path() / "sweep.sha256"));
+  EXPECT_EQ(slurp(d.path() / "notes.txt"), "mine\n");
+
+  // A results.json that is not a file is refused before any flight, not after the last.
+  fs::create_directory(mine);
+  EXPECT_THROW(ex::prepareSweepDirectory(spec64(), d.path()), geaware::io::OutputError);
+}
+
+TEST(SweepRun, AFileWithTheKeyButNotARecordIsFlownAgain) {
+  TempDir d("sweep-g");
+  ex::prepareSweepDirectory(spec64(), d.path());
+  const std::string key = ex::sweepKeys(spec64()).front();
+  ex::writeSweepFlight(d.path(), key, geaware::io::Json{{"key", key}}.dump());
+  EXPECT_FALSE(ex::sweepFlightDone(d.path(), key));
+  ex::writeSweepFlight(d.path(), key, ex::runSweepFlight(spec64(), key));
+  EXPECT_TRUE(ex::sweepFlightDone(d.path(), key));
 }

@@ -139,7 +139,9 @@ void prepareSweep(const SweepSpec& spec, const std::vector<std::string>& keys,
 [[nodiscard]] std::vector<std::string> missingSweepKeys(const SweepSpec& spec,
                                                         const std::filesystem::path& dir);
 /// Makes DIR and DIR/flights, and records the spec's fingerprint in DIR/sweep.sha256; throws
-/// std::runtime_error when DIR holds another sweep's results (another fingerprint).
+/// std::runtime_error when DIR holds another sweep's results (another fingerprint), and
+/// io::OutputError, changing nothing, when DIR has no sweep.sha256 but holds a results.json or
+/// a non-empty flights/ (not a sweep's: the merge would overwrite it, or merge it).
 void prepareSweepDirectory(const SweepSpec& spec, const std::filesystem::path& dir);
 /// Writes a key's record atomically (temporary file in DIR/flights, then rename).
 void writeSweepFlight(const std::filesystem::path& dir, const std::string& key,
