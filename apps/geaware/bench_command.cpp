@@ -156,6 +156,10 @@ sim::World benchWorld(const BenchOptions& o, const model::VehicleParams& vehicle
                          : io::resolveTruth(o.truth, {});
 }
 
+/// What a warning of a long grid (warnOfLongSweep) advises.
+constexpr const char* kLongAdvice = "bench keeps its flights in memory until all are flown (`geaware sweep` flies "
+                                    "the same file resumably, one record per flight)";
+
 /// The suite's sweep file as shipped (docs/install.md): beside the running program
 /// (<prefix>/bin/../share/geaware/config/sweeps), then this source tree's config/ (a program of
 /// the build tree), then the configured install prefix's.
@@ -238,6 +242,7 @@ int runRobustnessSuite(const BenchOptions& o) {
   }
   c.controllers = pickControllers(o, c.controllers);
   c.jobs = o.jobs;
+  warnOfLongSweep(sweep.spec, c.cells.size(), c.controllers.size(), {}, kLongAdvice);
   c.cache_dir = checkFiles(o, sweep.file.string());
   TerminalProgress progress("geaware bench", o.quiet);
   c.progress = &progress;
@@ -265,6 +270,7 @@ int runFaultSuite(const BenchOptions& o) {
   }
   c.controllers = pickControllers(o, c.controllers);
   c.jobs = o.jobs;
+  warnOfLongSweep(sweep.spec, c.cases.size(), c.controllers.size(), {}, kLongAdvice);
   benchFiles(o, sweep.file.string()).check();
   TerminalProgress progress("geaware bench", o.quiet);
   c.progress = &progress;
@@ -288,7 +294,7 @@ int runBeyondSuite(const BenchOptions& o) {
                                  file.string(), spec.cases.size()));
   }
   (void)pick(spec.scenarios, o.cases, "--cases", [](const experiments::SweepScenario& s) { return s.name; });
-  (void)pickControllers(o, spec.controllers);
+  warnOfLongSweep(spec, 1, pickControllers(o, spec.controllers).size(), o.cases, kLongAdvice);
   benchFiles(o, file.string()).check();
 
   experiments::BeyondOptions c;

@@ -15,6 +15,10 @@
 
 #include "geaware/io/provenance.hpp"
 
+namespace geaware::experiments {
+struct SweepSpec;
+}  // namespace geaware::experiments
+
 namespace geaware::cli {
 
 using Runner = std::function<int()>;
@@ -59,6 +63,11 @@ Runner addBenchCommand(CLI::App& app);
 /// `geaware sweep SPEC.yaml --out DIR`: the flights of a sweep file, one record file per flight,
 /// merged into DIR/results.json (experiments/sweep.hpp). docs/sweeps.md.
 Runner addSweepCommand(CLI::App& app);
+/// Warns on stderr, before any flight and even with --quiet, of a grid of more than
+/// experiments::kSweepLongSimulatedS of simulated flight: `cases` × `controllers` × the scenarios
+/// named (empty: all) × the seeds of `spec`, with how many flights and hours; `advice` follows.
+void warnOfLongSweep(const experiments::SweepSpec& spec, std::size_t cases, std::size_t controllers,
+                     const std::vector<std::string>& scenarios, const std::string& advice);
 /// `geaware identify {rotor,platform,flight,correlations} LOG.csv`: identification from rig and
 /// flight logs (ident/identify.hpp). docs/identification.md.
 Runner addIdentifyCommand(CLI::App& app);

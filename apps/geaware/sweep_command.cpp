@@ -41,6 +41,10 @@ int runSweep(const SweepOptions& o) {
     return 0;
   }
   if (!o.key.empty()) (void)experiments::parseSweepKey(spec, o.key);  // a bad key before any work
+  if (o.key.empty()) {
+    warnOfLongSweep(spec, spec.cases.size(), spec.controllers.size(), {},
+                    "each flight is kept as it ends: stop it (Ctrl-C) and run the same command again to go on");
+  }
   io::OutputChecks files;
   files.input("SPEC", o.spec);
   files.directory("--out", o.out);
@@ -84,6 +88,16 @@ int runSweep(const SweepOptions& o) {
 }
 
 }  // namespace
+
+void warnOfLongSweep(const experiments::SweepSpec& spec, std::size_t cases, std::size_t controllers,
+                     const std::vector<std::string>& scenarios, const std::string& advice) {
+  const double simulated_s = experiments::sweepSimulatedSeconds(spec, cases, controllers, scenarios);
+  if (simulated_s <= experiments::kSweepLongSimulatedS) return;
+  const std::size_t flights = cases * controllers * (scenarios.empty() ? spec.scenarios.size() : scenarios.size()) *
+                              static_cast<std::size_t>(spec.seed_count);
+  std::cerr << fmt::format("geaware: warning: {}: {} flights, {:.0f} h of simulated flight, a long run; {}\n",
+                           spec.source, flights, simulated_s / 3600.0, advice);
+}
 
 Runner addSweepCommand(CLI::App& app) {
   auto o = std::make_shared<SweepOptions>();

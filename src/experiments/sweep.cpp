@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -248,6 +249,17 @@ std::vector<ScenarioProblem> sweepScenarioProblems(const SweepSpec& spec, std::s
   }
   applyTouchdown(f);
   return validate(f, ScenarioStage::kFile);
+}
+
+double sweepSimulatedSeconds(const SweepSpec& spec, std::size_t cases, std::size_t controllers,
+                             const std::vector<std::string>& scenarios) {
+  double per_seed = 0.0;  // one flight of each scenario flown
+  for (const auto& s : spec.scenarios) {
+    if (!scenarios.empty() && std::find(scenarios.begin(), scenarios.end(), s.name) == scenarios.end()) continue;
+    per_seed += spec.start_hover_s + s.trajectory->duration() + FlightScenario{}.settle_s;
+  }
+  return per_seed * static_cast<double>(cases) * static_cast<double>(controllers) *
+         static_cast<double>(spec.seed_count);
 }
 
 void prepareSweep(const SweepSpec& spec, const std::vector<std::string>& keys, Progress* progress) {

@@ -208,3 +208,19 @@ TEST(SweepFile, AConfigurationListedTwiceIsNotToldToTakeAName) {
                 "'recommended' is listed twice (expected each configuration once)");
 }
 
+TEST(SweepFile, TheSimulatedTimeOfAGridIsKnownBeforeAnyWork) {
+  // The robustness suite's grid is far below the warning's threshold; the same file with 200
+  // times its seeds is above it (`bench` and `sweep` warn before flying it).
+  const SweepSpec s = parse(slurp(sourceDir() / "config/sweeps/robustness.yaml"));
+  double one_of_each = 0.0;
+  for (const auto& scn : s.scenarios) one_of_each += s.start_hover_s + scn.trajectory->duration();
+  const double all = geaware::experiments::sweepSimulatedSeconds(s, s.cases.size(), s.controllers.size());
+  EXPECT_DOUBLE_EQ(all, one_of_each * 16 * 7 * 5);
+  EXPECT_LT(all, geaware::experiments::kSweepLongSimulatedS / 20);
+  EXPECT_DOUBLE_EQ(geaware::experiments::sweepSimulatedSeconds(s, 1, 1, {s.scenarios[1].name}),
+                   (s.start_hover_s + s.scenarios[1].trajectory->duration()) * 5);
+  SweepSpec many = s;
+  many.seed_count = 1000;
+  EXPECT_GT(geaware::experiments::sweepSimulatedSeconds(many, many.cases.size(), many.controllers.size()),
+            geaware::experiments::kSweepLongSimulatedS);
+}

@@ -119,6 +119,14 @@ struct SweepKey {
 void prepareSweep(const SweepSpec& spec, const std::vector<std::string>& keys,
                   Progress* progress = nullptr);
 
+/// A grid longer than this is warned of before it is flown (`bench` and `sweep`) [s of simulated
+/// flight]: some 50 times the robustness suite's 1,120 flights.
+inline constexpr double kSweepLongSimulatedS = 1.0e6;
+/// The simulated seconds of `cases` × `controllers` × the seeds × the scenarios named in
+/// `scenarios` (empty: all), each flight its start hover, trajectory and settling.
+[[nodiscard]] double sweepSimulatedSeconds(const SweepSpec& spec, std::size_t cases, std::size_t controllers,
+                                           const std::vector<std::string>& scenarios = {});
+
 /// The flight's record: one line of JSON (no newline) with the key, its parts, the suite's
 /// flight metrics (experiments::SuiteFlight) and the fault suite's `terminated` and
 /// `non_finite_commands`, numbers in their shortest round-trip form.
