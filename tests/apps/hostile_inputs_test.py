@@ -125,6 +125,14 @@ def cases():
            "fast_waypoints.yaml"]]
     c += [FLY + ["--vehicle", name] for name in ["nan_vehicle.yaml", "inf_vehicle.yaml"]]
     c += [FLY + ["--truth", "nan_truth.yaml"]]
+    # Sweeps: a directory holding someone's results.json (here the sweep file itself), a name
+    # that is not UTF-8; the learned vehicle file over an input, into a missing directory, to stdout.
+    c += [["sweep", "sweep.yaml", "--out", ".", "--quiet"], ["sweep", "results.json", "--out", ".", "--quiet"],
+          ["sweep", "latin1.yaml", "--out", "new-sweep", "--quiet"],
+          ["bench", "--quiet", "--suite", "faults", "--sweep", "latin1.yaml"]]
+    learn = [a if a != "model:model_indi" else "model:model_indi+learn" for a in FLY]
+    c += [learn + ["--vehicle", "vehicle.yaml", "--learned-vehicle", out] for out in ["vehicle.yaml", "link.yaml"]]
+    c += [learn + ["--learned-vehicle", out] for out in ["-", "missing/x.yaml", "dir"]]
     return c
 
 
@@ -153,6 +161,11 @@ def setup(d):
     w("nan_vehicle.yaml", edited(vehicle, "mass_kg: 1.696", "mass_kg: .nan"))
     w("inf_vehicle.yaml", edited(vehicle, "k_T_N_per_rpm2: 4.0083e-8", "k_T_N_per_rpm2: .inf"))
     w("nan_truth.yaml", open(vehicle).read() + "truth:\n  motor:\n    time_constant_s: .nan\n")
+    sweep = open(os.path.join(SOURCE, "tests/sweep/suites/faults_small.yaml")).read()
+    w("sweep.yaml", sweep.replace("calibrate: true", "calibrate: false"))
+    w("results.json", sweep.replace("calibrate: true", "calibrate: false"))
+    with open(os.path.join(d, "latin1.yaml"), "wb") as f:
+        f.write(sweep.replace("fault: motor 80%", "{fault: motor 80%, name: mot\xe9ur}").encode("latin-1"))
     w("existing.csv", "precious\n")
     w("existing.json", json.dumps({"precious": True}) + "\n")
     w("existing.yaml", "precious: true\n")
@@ -179,7 +192,8 @@ def main():
         for args in all_cases:
             shown = "geaware " + " ".join(args)
             try:
-                r = subprocess.run([GEAWARE] + args, cwd=d, capture_output=True, text=True, timeout=10)
+                r = subprocess.run([GEAWARE] + args, cwd=d, capture_output=True, text=True,
+                                   errors="replace", timeout=10)
             except subprocess.TimeoutExpired:
                 hangs += 1
                 print(f"HANG (> 10 s): {shown}")
