@@ -5,7 +5,7 @@
 
 # A directory with a results.json and no sweep.sha256 is not a sweep's: refused, not overwritten.
 set(foreign_sweep_dir ${CMAKE_CURRENT_BINARY_DIR}/foreign_sweep_dir)
-file(WRITE ${foreign_sweep_dir}/results.json "{\"mine\": true}\n")
+file(WRITE ${foreign_sweep_dir}/results.json "the results of another program\n")
 geaware_cli_test(app_sweep_refuses_a_foreign_directory EXIT 1
   STDERR_CONTAINS "geaware: error: --out '${foreign_sweep_dir}': holds ${foreign_sweep_dir}/results.json and no sweep.sha256"
                   "expected a new or empty directory (nothing was changed)"

@@ -265,14 +265,14 @@ TEST(SweepRun, ADirectoryThatIsNoSweepsIsRefusedAndLeftAsItWas) {
   // files are the user's to keep beside the sweep's.
   TempDir d("sweep-f");
   const fs::path mine = d.path() / "results.json";
-  std::ofstream(mine) << "{\"mine\": true}\n";
+  std::ofstream(mine) << "the results of another program\n";
   try {
     ex::prepareSweepDirectory(spec64(), d.path());
     FAIL() << "a directory holding someone's results.json was taken";
   } catch (const geaware::io::OutputError& e) {
     EXPECT_THAT(e.what(), ::testing::HasSubstr("results.json and no sweep.sha256"));
   }
-  EXPECT_EQ(slurp(mine), "{\"mine\": true}\n");
+  EXPECT_EQ(slurp(mine), "the results of another program\n");
   EXPECT_FALSE(fs::exists(d.path() / "sweep.sha256"));
   EXPECT_FALSE(fs::exists(d.path() / "flights"));
 
