@@ -59,7 +59,7 @@ void bindSweep(py::module_& m) {
         ex::prepareSweepDirectory(ex::loadSweepFile(spec), dir);
       },
       py::arg("spec"), py::arg("dir"),
-      "Creates DIR and DIR/flights and records the sweep file's SHA-256 in DIR/sweep.sha256; "
+      "Creates DIR and DIR/flights and records the sweep's fingerprint (its file's and the named files' SHA-256) in DIR/sweep.sha256; "
       "RuntimeError when DIR holds another sweep's results.");
   m.def(
       "sweep_write_flight",

@@ -269,6 +269,15 @@ void readWorld(io::MapReader& root, const std::filesystem::path& base, SweepSpec
   }
 }
 
+/// SHA-256 of the sweep file's bytes; when it names files, of those bytes followed, for each
+/// file read in parsing it (in order), by a newline and that file's SHA-256 in hex. So an edit of
+/// a scenario, vehicle, truth, controller-parameters or height-map file is another sweep.
+std::string sweepFingerprint(std::string_view yaml_text, const std::vector<std::filesystem::path>& files) {
+  std::string text(yaml_text);
+  for (const auto& f : files) text += "\n" + io::fileSha256Hex(f.string());
+  return io::sha256Hex(std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()));
+}
+
 }  // namespace
 
 std::size_t SweepSpec::flights() const noexcept {
@@ -277,6 +286,7 @@ std::size_t SweepSpec::flights() const noexcept {
 
 SweepSpec parseSweepYaml(std::string_view yaml_text, const std::string& source,
                          const std::filesystem::path& base_dir, std::optional<double> max_sim_s_override) {
+  io::InputFileCollector inputs;  // every file the sweep names, and the files those name
   YAML::Node doc;
   try {
     doc = YAML::Load(std::string(yaml_text));
@@ -289,8 +299,6 @@ SweepSpec parseSweepYaml(std::string_view yaml_text, const std::string& source,
   (void)io::readFormatVersion(root, ctx, source);
   SweepSpec s;
   s.source = source;
-  s.fingerprint = io::sha256Hex(std::span(reinterpret_cast<const unsigned char*>(yaml_text.data()),
-                                          yaml_text.size()));
   readWorld(root, base_dir, s);
   s.calibrate = root.boolean("calibrate");
   if (root.has("start_hover_s")) {
@@ -358,6 +366,7 @@ SweepSpec parseSweepYaml(std::string_view yaml_text, const std::string& source,
   }
   root.rejectUnknownKeys();
   if (!ctx.problems.empty()) throw io::ConfigError(source, std::move(ctx.problems));
+  s.fingerprint = sweepFingerprint(yaml_text, inputs.files());
 
   // The product, and the longest file name, before any work.
   const double product = static_cast<double>(s.cases.size()) * static_cast<double>(s.controllers.size()) *

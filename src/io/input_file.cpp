@@ -15,9 +15,18 @@ std::vector<InputFileRead>& inputsRead() {
   static std::vector<InputFileRead> inputs;
   return inputs;
 }
+thread_local InputFileCollector* t_collector = nullptr;
 }  // namespace
 
+InputFileCollector::InputFileCollector() noexcept : outer_(t_collector) { t_collector = this; }
+
+InputFileCollector::~InputFileCollector() {
+  t_collector = outer_;
+  if (outer_ != nullptr) outer_->files_.insert(outer_->files_.end(), files_.begin(), files_.end());
+}
+
 void noteInputFile(const std::filesystem::path& file, std::string_view noun) {
+  if (t_collector != nullptr) t_collector->files_.push_back(file);
   const std::lock_guard<std::mutex> lock(g_inputs_mutex);
   for (const auto& in : inputsRead()) {
     if (in.path == file) return;

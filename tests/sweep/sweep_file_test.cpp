@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <span>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -16,6 +18,7 @@
 #include "geaware/experiments/robustness.hpp"
 #include "geaware/experiments/sweep.hpp"
 #include "geaware/io/config_error.hpp"
+#include "geaware/io/provenance.hpp"
 #include "sweep_support.hpp"
 
 using geaware::experiments::parseSweepYaml;
@@ -223,4 +226,36 @@ TEST(SweepFile, TheSimulatedTimeOfAGridIsKnownBeforeAnyWork) {
   many.seed_count = 1000;
   EXPECT_GT(geaware::experiments::sweepSimulatedSeconds(many, many.cases.size(), many.controllers.size()),
             geaware::experiments::kSweepLongSimulatedS);
+}
+
+TEST(SweepFile, TheFingerprintCoversEveryFileTheSweepNames) {
+  // A sweep that names no file is known by the SHA-256 of its bytes. One whose scenario file
+  // names a height map is another sweep when either file changes, even by a comment: its
+  // results directory then refuses the old records instead of merging them as this sweep's.
+  const std::string t = sweep64();
+  EXPECT_EQ(parse(t).fingerprint,
+            geaware::io::sha256Hex(std::span(reinterpret_cast<const unsigned char*>(t.data()), t.size())));
+  const geaware::sweep_test::TempDir d("sweep-fingerprint");
+  const auto write = [&d](const std::string& name, const std::string& text) {
+    std::ofstream(d.path() / name, std::ios::binary) << text;
+  };
+  const std::string map = "# origin_x_m: -5\n# origin_y_m: -5\n# cell_m: 0.5\n";
+  std::string rows;
+  for (int j = 0; j < 21; ++j) rows += "0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0\n";  // 10 m × 10 m, level
+  write("ground.csv", map + rows);
+  std::string scenario = slurp(sourceDir() / "config/scenarios/lemniscate_low.yaml");
+  scenario = replaced(scenario, "  type: flat                     # flat | tilted | step | height_map\n  height_m: 0.0\n",
+                      "  type: height_map\n  file: ground.csv\n");
+  write("low.yaml", scenario);
+  const std::string with_file = replaced(t, "{type: lemniscate, height_m: 1.0",
+                                         "{type: file, file: " + (d.path() / "low.yaml").string() +
+                                             ", name: low}\n  - {type: lemniscate, height_m: 1.0");
+  const std::string first = parse(with_file).fingerprint;
+  EXPECT_NE(first, parse(t).fingerprint);
+  EXPECT_EQ(parse(with_file).fingerprint, first);  // the same files: the same sweep
+  write("ground.csv", map + "# a comment\n" + rows);
+  const std::string map_edited = parse(with_file).fingerprint;
+  EXPECT_NE(map_edited, first);
+  write("low.yaml", scenario + "# a comment\n");
+  EXPECT_NE(parse(with_file).fingerprint, map_edited);
 }

@@ -51,7 +51,9 @@ struct SweepScenario {
 /// A parsed sweep file.
 struct SweepSpec {
   std::string source;  ///< the file as named (errors)
-  std::string fingerprint;  ///< SHA-256 of the file's bytes: identifies the sweep (memo, DIR)
+  /// SHA-256 of the file's bytes and of every file it names, however deeply (scenario, height-map,
+  /// vehicle, truth, controller-parameters files): identifies the sweep (memo, DIR).
+  std::string fingerprint;
   model::VehicleParams vehicle;  ///< the belief's starting point (the vehicle file)
   sim::World world;              ///< the unperturbed world
   std::string world_reference;   ///< `world` as the file gives it ("default", a name, a path)

@@ -45,4 +45,22 @@ void noteInputFile(const std::filesystem::path& file, std::string_view noun);
 /// Every input file recorded so far, in the order read.
 [[nodiscard]] std::vector<InputFileRead> inputFilesRead();
 
+/// While it lives, lists every input file its thread records (noteInputFile), in the order read
+/// and repeats included: the files a parse read, however deeply one file names another (a
+/// sweep's scenario files, their height maps, vehicles and truths). Collectors nest: an inner
+/// one's files are also the outer one's.
+class InputFileCollector {
+ public:
+  InputFileCollector() noexcept;
+  ~InputFileCollector();
+  InputFileCollector(const InputFileCollector&) = delete;
+  InputFileCollector& operator=(const InputFileCollector&) = delete;
+  [[nodiscard]] const std::vector<std::filesystem::path>& files() const noexcept { return files_; }
+
+ private:
+  friend void noteInputFile(const std::filesystem::path& file, std::string_view noun);
+  InputFileCollector* outer_;
+  std::vector<std::filesystem::path> files_;
+};
+
 }  // namespace geaware::io
