@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -167,10 +168,20 @@ void checkFiles(const FlyOptions& o) {
 /// --learned-vehicle: the flight's vehicle file (or the built-in one) with F_G replaced by the
 /// table the controller learned and, once excited enough to be learned, the leveling torque
 /// scaled by the scale learned; every other value and comment kept (io::writeVehicleFile).
-void writeLearnedVehicle(const FlyOptions& o, const experiments::FlightScenario& s,
+/// False, with a message and nothing written, when no knot of F_G was learned: the table would
+/// be only the learner's start (with +learn0, no ground effect at all), which the file would
+/// present as learned.
+bool writeLearnedVehicle(const FlyOptions& o, const experiments::FlightScenario& s,
                          const experiments::FlightResult& r, const io::RunInfo& run) {
-  if (o.learned_vehicle.empty() || !r.learned_ground_effect) return;
+  if (o.learned_vehicle.empty() || !r.learned_ground_effect) return true;
   const experiments::LearnedGroundEffect& g = *r.learned_ground_effect;
+  if (std::none_of(g.learned.begin(), g.learned.end(), [](bool b) { return b; })) {
+    std::cerr << fmt::format(
+        "geaware: error: --learned-vehicle {}: not written: F_G was learned at none of its {} knots ({} samples "
+        "used; the learner takes samples in slow, level flight within its heights, docs/controller.md)\n",
+        o.learned_vehicle, g.heights_m.size(), g.samples);
+    return false;
+  }
   io::VehicleUpdate update;
   update.setTable("ground_effect.additional_thrust", g.heights_m, g.f_g);
   if (g.leveling_learned) {
@@ -197,6 +208,7 @@ void writeLearnedVehicle(const FlyOptions& o, const experiments::FlightScenario&
                                              g.leveling_samples)
                                : fmt::format("as the file's (its scale was not excited enough to learn: {} samples)",
                                              g.leveling_samples));
+  return true;
 }
 
 /// Refuses, before it starts, a flight whose simulated duration exceeds --max-sim-s.
@@ -250,13 +262,13 @@ int runFly(const FlyOptions& o) {
   std::fflush(human);
   if (log) std::cerr << fmt::format("geaware: wrote {} rows to {}\n", log->rows(), o.out);
   if (!o.json.empty()) writeJsonOutput(o.json, experiments::flightJson(s, r), run);
-  writeLearnedVehicle(o, s, r, run);
+  const bool learned_written = writeLearnedVehicle(o, s, r, run);
   if (series) {
     const auto html =
         experiments::writeFlightReport(o.report, series->series(), r, title(o, s), run, o.png);
     std::cerr << "geaware: wrote " << html.string() << (o.png ? " and flight.png" : "") << "\n";
   }
-  return 0;
+  return learned_written ? 0 : 1;
 }
 
 void addFlightOptions(CLI::App* cmd, FlyOptions& o) {

@@ -253,6 +253,20 @@ TEST(JsonOutput, FlyWritesTheLearnedGroundEffectAsAVehicleFile) {
   EXPECT_FALSE(fs::exists(c));
 }
 
+// A flight that learns F_G at no knot (a lemniscate at 1 m, above the learner's top knot) writes
+// no vehicle file: it would hold only the learner's start (with +learn0, no ground effect at all)
+// as if learned. The flight's other outputs are written; the exit status says the file is not.
+TEST(JsonOutput, FlyWritesNoVehicleFileWhenNothingWasLearned) {
+  const fs::path a = scratch() / "learned_nothing.yaml";
+  const auto r = geaware("fly --trajectory lemniscate --height 1.0 --speed 1 --controller recommended+learn0 --seed 1 "
+                        "--quiet --json - --learned-vehicle '" + a.string() + "'");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_FALSE(fs::exists(a));
+  const Json doc = Json::parse(r.out);
+  ASSERT_EQ(doc["learned"]["f_g"]["learned"].size(), 11u);
+  for (const auto& knot : doc["learned"]["f_g"]["learned"]) EXPECT_FALSE(knot.get<bool>());
+}
+
 // Two laps sweeping 0.1–0.3 m excite the leveling scale: the file's leveling torque comes out
 // scaled by it, and `geaware model` reads M_G back scaled by the same factor at every height.
 TEST(JsonOutput, FlyWritesTheLearnedLevelingScaleIntoTheVehicleFile) {
