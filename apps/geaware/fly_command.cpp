@@ -194,15 +194,32 @@ bool writeLearnedVehicle(const FlyOptions& o, const experiments::FlightScenario&
       update.setTable("ground_effect.leveling_torque", table.heights_m, std::move(values));
     }
   }
-  update.provenance = fmt::format("a flight learning F_G and the leveling scale (geaware fly, {} samples, seed {})",
-                                  g.samples, run.seeds.empty() ? 0 : run.seeds.front());
+  // Which knots were learned: the others hold the learner's extension of them (or its start),
+  // which the file must not present as measured.
+  std::size_t learned_knots = 0;
+  double lowest_m = 0.0, highest_m = 0.0;
+  for (std::size_t i = 0; i < g.learned.size(); ++i) {
+    if (!g.learned[i]) continue;
+    if (learned_knots++ == 0) lowest_m = g.heights_m[i];
+    highest_m = g.heights_m[i];
+  }
+  const std::string coverage =
+      learned_knots == g.heights_m.size()
+          ? fmt::format("learned at all {} knots", learned_knots)
+          : fmt::format("learned at {} of {} knots, {} m; the others hold the learner's extension, not "
+                        "measurements",
+                        learned_knots, g.heights_m.size(),
+                        lowest_m == highest_m ? fmt::format("{:g}", lowest_m)
+                                              : fmt::format("{:g}–{:g}", lowest_m, highest_m));
+  update.provenance = fmt::format("a flight learning F_G ({}) and the leveling scale (geaware fly, {} samples, seed {})",
+                                  coverage, g.samples, run.seeds.empty() ? 0 : run.seeds.front());
   if (o.vehicle.empty()) {
     (void)io::writeVehicleFile(io::builtinVehicleYaml(), "built-in vehicle", o.learned_vehicle, update);
   } else {
     (void)io::writeVehicleFile(o.vehicle, o.learned_vehicle, update);
   }
-  std::cerr << fmt::format("geaware: wrote the learned F_G ({} knots) into {}; the leveling torque {}\n",
-                           g.heights_m.size(), o.learned_vehicle,
+  std::cerr << fmt::format("geaware: wrote the learned F_G ({}) into {}; the leveling torque {}\n",
+                           coverage, o.learned_vehicle,
                            g.leveling_learned
                                ? fmt::format("scaled by {:.4g} (learned from {} samples)", g.leveling_scale,
                                              g.leveling_samples)

@@ -367,6 +367,7 @@ SweepSpec parseSweepYaml(std::string_view yaml_text, const std::string& source,
   root.rejectUnknownKeys();
   if (!ctx.problems.empty()) throw io::ConfigError(source, std::move(ctx.problems));
   s.fingerprint = sweepFingerprint(yaml_text, inputs.files());
+  s.file_sha256 = sweepFingerprint(yaml_text, {});
 
   // The product, and the longest file name, before any work.
   const double product = static_cast<double>(s.cases.size()) * static_cast<double>(s.controllers.size()) *

@@ -102,11 +102,22 @@ void prepareSweepDirectory(const SweepSpec& spec, const fs::path& dir) {
   const std::string line = spec.fingerprint + "\n";
   if (fs::exists(id, ec)) {
     const std::string old = readSmallFile(id);
+    const std::string old_id = old.substr(0, old.find('\n'));
+    if (old != line && old_id == spec.file_sha256) {
+      // Made by a build whose fingerprint was the sweep file's alone: the flights may be this
+      // sweep's, if none of the files it names changed since; only the user can know.
+      throw std::runtime_error(fmt::format(
+          "--out '{}': {} holds the SHA-256 of {} alone, as builds before 2026-11-29 wrote it; the "
+          "fingerprint now also covers the files the sweep names. If none of them changed since the "
+          "directory was made, replace that line with {} to go on with its flights; otherwise give another "
+          "directory",
+          dir.string(), id.string(), spec.source, spec.fingerprint));
+    }
     if (old != line) {
       throw std::runtime_error(fmt::format(
-          "--out '{}': holds the results of another sweep file ({} has '{}', {} has SHA-256 {}); "
-          "give another directory, or remove this one to start again",
-          dir.string(), id.string(), old.substr(0, old.find('\n')), spec.source, spec.fingerprint));
+          "--out '{}': holds the results of another sweep ({} has '{}'; {} and the files it names have the "
+          "fingerprint {}); give another directory, or remove this one to start again",
+          dir.string(), id.string(), old_id, spec.source, spec.fingerprint));
     }
     return;
   }

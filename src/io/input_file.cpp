@@ -20,13 +20,12 @@ thread_local InputFileCollector* t_collector = nullptr;
 
 InputFileCollector::InputFileCollector() noexcept : outer_(t_collector) { t_collector = this; }
 
-InputFileCollector::~InputFileCollector() {
-  t_collector = outer_;
-  if (outer_ != nullptr) outer_->files_.insert(outer_->files_.end(), files_.begin(), files_.end());
-}
+InputFileCollector::~InputFileCollector() { t_collector = outer_; }
 
 void noteInputFile(const std::filesystem::path& file, std::string_view noun) {
-  if (t_collector != nullptr) t_collector->files_.push_back(file);
+  // Every collector of the thread, innermost first: an inner one's files are the outer ones' too
+  // (recorded here, where an allocation may throw, not in a destructor).
+  for (InputFileCollector* c = t_collector; c != nullptr; c = c->outer_) c->files_.push_back(file);
   const std::lock_guard<std::mutex> lock(g_inputs_mutex);
   for (const auto& in : inputsRead()) {
     if (in.path == file) return;

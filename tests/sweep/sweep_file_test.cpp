@@ -252,6 +252,8 @@ TEST(SweepFile, TheFingerprintCoversEveryFileTheSweepNames) {
                                              ", name: low}\n  - {type: lemniscate, height_m: 1.0");
   const std::string first = parse(with_file).fingerprint;
   EXPECT_NE(first, parse(t).fingerprint);
+  EXPECT_EQ(parse(with_file).file_sha256,
+            geaware::io::sha256Hex(std::span(reinterpret_cast<const unsigned char*>(with_file.data()), with_file.size())));
   EXPECT_EQ(parse(with_file).fingerprint, first);  // the same files: the same sweep
   write("ground.csv", map + "# a comment\n" + rows);
   const std::string map_edited = parse(with_file).fingerprint;

@@ -153,13 +153,26 @@ TEST(SweepRun, MergeNamesTheMissingAndADirectoryKeepsItsSweep) {
   }
   ex::SweepSpec other = spec64();
   other.fingerprint = "0123";
+  other.file_sha256 = "0123";  // another sweep file
   try {
     ex::prepareSweepDirectory(other, d.path());
     FAIL() << "another sweep's directory was accepted";
   } catch (const std::runtime_error& e) {
-    EXPECT_THAT(e.what(), ::testing::HasSubstr("holds the results of another sweep file"));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("holds the results of another sweep ("));
   }
   ex::prepareSweepDirectory(spec64(), d.path());  // the same sweep: fine
+  // A directory of a build whose fingerprint was the sweep file's SHA-256 alone, for a sweep
+  // that names files: refused, with the line that resumes it if those files did not change.
+  ex::SweepSpec named = spec64();
+  named.fingerprint = "with-named-files";
+  named.file_sha256 = spec64().fingerprint;
+  try {
+    ex::prepareSweepDirectory(named, d.path());
+    FAIL() << "an older build's directory was taken as this sweep's";
+  } catch (const std::runtime_error& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("alone, as builds before 2026-11-29 wrote it"));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("replace that line with with-named-files"));
+  }
 }
 
 TEST(SweepRun, AFailingFlightIsReportedWithItsKey) {

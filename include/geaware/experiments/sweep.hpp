@@ -54,6 +54,9 @@ struct SweepSpec {
   /// SHA-256 of the file's bytes and of every file it names, however deeply (scenario, height-map,
   /// vehicle, truth, controller-parameters files): identifies the sweep (memo, DIR).
   std::string fingerprint;
+  /// SHA-256 of the sweep file's bytes alone (the fingerprint of builds before 2026-11-29,
+  /// recognised in an old results directory).
+  std::string file_sha256;
   model::VehicleParams vehicle;  ///< the belief's starting point (the vehicle file)
   sim::World world;              ///< the unperturbed world
   std::string world_reference;   ///< `world` as the file gives it ("default", a name, a path)

@@ -210,9 +210,10 @@ class RobustScale {
  public:
   /// robustSigma(v), the same value bit for bit.
   [[nodiscard]] double sigma(std::span<const double> v);
-  /// The k-th smallest (0-based) of v, k < v.size(): the value std::nth_element puts at
-  /// position k of a copy of v (for values without NaN, any exact selection gives it; of a −0
-  /// and a +0, which compare equal, either may come).
+  /// The k-th smallest (0-based) of v, k < v.size(): for values without NaN, the value
+  /// std::nth_element puts at position k of a copy of v (any exact selection gives it; of a −0
+  /// and a +0, which compare equal, either may come). With NaN there is no order, and the value
+  /// is the one robustSigma's selection always gave (from the sampled window on ≥ 8192 values).
   [[nodiscard]] double kthSmallest(std::span<const double> v, std::size_t k);
 
  private:

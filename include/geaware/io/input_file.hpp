@@ -52,7 +52,7 @@ void noteInputFile(const std::filesystem::path& file, std::string_view noun);
 class InputFileCollector {
  public:
   InputFileCollector() noexcept;
-  ~InputFileCollector();
+  ~InputFileCollector();  ///< restores the thread's outer collector, if any
   InputFileCollector(const InputFileCollector&) = delete;
   InputFileCollector& operator=(const InputFileCollector&) = delete;
   [[nodiscard]] const std::vector<std::filesystem::path>& files() const noexcept { return files_; }
