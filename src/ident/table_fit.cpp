@@ -66,28 +66,31 @@ std::vector<double> chooseKnots(const std::vector<double>& h, const TableOptions
     }
     return k;
   }
-  // Distinct heights to 0.1 mm, with their sample counts.
-  std::vector<double> knots;
-  const auto counted = distinctCounts(h, options.top_m);
-  if (counted) {
-    const auto& [distinct, count] = *counted;
-    if (distinct.size() <= options.max_knots) {
-      knots = distinct;
-    } else {
-      // Thin by sample count: knots at equally spaced quantiles of the samples. sorted[r] of
-      // the sorted heights is the distinct height whose cumulative count first exceeds r.
-      std::size_t total = 0;
-      for (const std::size_t c : count) total += c;
-      const std::size_t m = std::max<std::size_t>(options.max_knots, 2);
-      std::size_t d = 0;
-      std::size_t through = count[0];  // heights up to and including distinct[d]
-      for (std::size_t q = 0; q < m; ++q) {
-        const std::size_t r = q * (total - 1) / (m - 1);
-        while (through <= r) through += count[++d];
-        const double x = distinct[d];
-        if (knots.empty() || x > knots.back()) knots.push_back(x);
-      }
+  // Distinct heights to 0.1 mm; when there are more than max_knots, thinned by sample count:
+  // knots at equally spaced quantiles of the samples, at(r) the r-th smallest of `total`
+  // rounded heights (r non-decreasing from call to call).
+  const auto thin = [&options](std::vector<double> distinct, std::size_t total, auto&& at) {
+    if (distinct.size() <= options.max_knots) return distinct;
+    std::vector<double> k;
+    const std::size_t m = std::max<std::size_t>(options.max_knots, 2);
+    for (std::size_t q = 0; q < m; ++q) {
+      const double x = at(q * (total - 1) / (m - 1));
+      if (k.empty() || x > k.back()) k.push_back(x);
     }
+    return k;
+  };
+  std::vector<double> knots;
+  if (auto counted = distinctCounts(h, options.top_m)) {
+    auto& [distinct, count] = *counted;
+    std::size_t total = 0;
+    for (const std::size_t c : count) total += c;
+    // The r-th smallest is the distinct height whose cumulative count first exceeds r.
+    std::size_t d = 0;
+    std::size_t through = count[0];  // heights up to and including distinct[d]
+    knots = thin(distinct, total, [&](std::size_t r) {
+      while (through <= r) through += count[++d];
+      return distinct[d];
+    });
   } else {
     std::vector<double> sorted;
     sorted.reserve(h.size());
@@ -95,22 +98,11 @@ std::vector<double> chooseKnots(const std::vector<double>& h, const TableOptions
       if (x <= options.top_m) sorted.push_back(std::round(x * 1e4) / 1e4);
     }
     std::sort(sorted.begin(), sorted.end());
-    if (!sorted.empty()) {
-      std::vector<double> distinct;
-      for (double x : sorted) {
-        if (distinct.empty() || x != distinct.back()) distinct.push_back(x);
-      }
-      if (distinct.size() <= options.max_knots) {
-        knots = std::move(distinct);
-      } else {
-        // Thin by sample count: knots at equally spaced quantiles of the samples.
-        const std::size_t m = std::max<std::size_t>(options.max_knots, 2);
-        for (std::size_t q = 0; q < m; ++q) {
-          const double x = sorted[q * (sorted.size() - 1) / (m - 1)];
-          if (knots.empty() || x > knots.back()) knots.push_back(x);
-        }
-      }
+    std::vector<double> distinct;
+    for (double x : sorted) {
+      if (distinct.empty() || x != distinct.back()) distinct.push_back(x);
     }
+    knots = thin(std::move(distinct), sorted.size(), [&sorted](std::size_t r) { return sorted[r]; });
   }
   if (knots.size() < 2) {
     throw IdentError(source + ": cannot fit " + what + " as a table: the samples span " +
