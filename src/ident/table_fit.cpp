@@ -81,7 +81,9 @@ std::vector<double> chooseKnots(const std::vector<double>& h, const TableOptions
   };
   std::vector<double> knots;
   if (auto counted = distinctCounts(h, options.top_m)) {
-    auto& [distinct, count] = *counted;
+    // Named references, not a structured binding: clang 14 cannot capture bindings in lambdas.
+    const std::vector<double>& distinct = counted->first;
+    const std::vector<std::size_t>& count = counted->second;
     std::size_t total = 0;
     for (const std::size_t c : count) total += c;
     // The r-th smallest is the distinct height whose cumulative count first exceeds r.
