@@ -242,8 +242,8 @@ void checkDuration(const experiments::FlightScenario& s) {
 int runFly(const FlyOptions& o) {
   const experiments::FlightScenario s = scenarioOf(o);
   if (!o.learned_vehicle.empty() && s.controller.learn_ground_effect == control::GroundEffectLearning::kOff) {
-    throw std::runtime_error("--learned-vehicle needs a controller that learns F_G in flight (--controller "
-                             "…+learn or …+learn0)");
+    throw UsageError("--learned-vehicle needs a controller that learns F_G in flight (--controller "
+                     "…+learn or …+learn0)");
   }
   checkFiles(o);
   checkDuration(s);

@@ -246,10 +246,11 @@ TEST(JsonOutput, FlyWritesTheLearnedGroundEffectAsAVehicleFile) {
   EXPECT_EQ(model["rows"][0]["M_G_m"].get<double>(), builtin["rows"][0]["M_G_m"].get<double>());
   EXPECT_EQ(model["rows"][1]["M_G_m"].get<double>(), builtin["rows"][1]["M_G_m"].get<double>());
   const fs::path c = scratch() / "learned_c.yaml";
-  EXPECT_NE(geaware("fly --trajectory hover-descent --height 0.2 --speed 0.5 --controller recommended "
+  // A controller that does not learn cannot write what it learned: a usage error (status 2).
+  EXPECT_EQ(geaware("fly --trajectory hover-descent --height 0.2 --speed 0.5 --controller recommended "
                     "--quiet --learned-vehicle '" + c.string() + "'")
                 .exit_code,
-            0);
+            2);
   EXPECT_FALSE(fs::exists(c));
 }
 
