@@ -99,9 +99,13 @@ void checkUnique(io::MapReader& root, const std::string& list, const std::vector
   }
 }
 
-bool checkCount(io::MapReader& root, const std::string& key, std::size_t n, std::size_t max) {
+/// Whether list `key` has 1 to `max` items. `problems_before`: the file's problem count before
+/// the list was read; a list the reader already found missing or of the wrong type reads as
+/// empty and is not reported a second time.
+bool checkCount(io::MapReader& root, const std::string& key, std::size_t n, std::size_t max,
+                std::size_t problems_before) {
   if (n == 0) {
-    root.problem(key, "expected a list of at least one item");
+    if (root.problemCount() == problems_before) root.problem(key, "expected a list of at least one item");
     return false;
   }
   if (n > max) {
@@ -322,8 +326,9 @@ SweepSpec parseSweepYaml(std::string_view yaml_text, const std::string& source,
   s.seed_count = static_cast<std::uint64_t>(seeds.integer("count", 1, 1'000'000));
   seeds.rejectUnknownKeys();
 
+  std::size_t before = root.problemCount();
   auto case_items = root.maps("perturbations");
-  if (checkCount(root, "perturbations", case_items.size(), kSweepMaxCases)) {
+  if (checkCount(root, "perturbations", case_items.size(), kSweepMaxCases, before)) {
     for (auto& m : case_items) {
       s.case_faults.emplace_back();
       s.cases.push_back(readCase(m, s.case_faults.back()));
@@ -331,8 +336,9 @@ SweepSpec parseSweepYaml(std::string_view yaml_text, const std::string& source,
     checkUnique(root, "perturbations", s.cases, [](const Perturbation& p) { return p.name; });
   }
 
+  before = root.problemCount();
   const auto names = root.texts("controllers");
-  if (checkCount(root, "controllers", names.size(), kSweepMaxControllers)) {
+  if (checkCount(root, "controllers", names.size(), kSweepMaxControllers, before)) {
     for (std::size_t i = 0; i < names.size(); ++i) {
       control::ControllerParams p;
       const std::string item = "controllers[" + std::to_string(i) + "]";
@@ -359,8 +365,9 @@ SweepSpec parseSweepYaml(std::string_view yaml_text, const std::string& source,
     }
   }
 
+  before = root.problemCount();
   auto scenario_items = root.maps("scenarios");
-  if (checkCount(root, "scenarios", scenario_items.size(), kSweepMaxScenarios)) {
+  if (checkCount(root, "scenarios", scenario_items.size(), kSweepMaxScenarios, before)) {
     for (auto& m : scenario_items) s.scenarios.push_back(readScenario(m, base_dir, s.max_sim_s));
     checkUnique(root, "scenarios", s.scenarios, [](const SweepScenario& c) { return c.name; });
   }

@@ -205,6 +205,19 @@ TEST(SweepFile, ANameThatIsNotUtf8IsRefusedAtItsLine) {
   EXPECT_EQ(parse(replaced(with_file, item + "}", item + ", name: cafe}")).scenarios[1].name, "cafe");
 }
 
+TEST(SweepFile, AListOfTheWrongTypeOrMissingIsReportedOnce) {
+  // A list the reader finds missing or of the wrong type reads as empty; the "at least one
+  // item" check must not report the same key a second time.
+  const std::string t = sweep64();
+  expectProblem(replaced(t, "controllers:\n  - recommended\n  - indi:none\n", "controllers: 5\n"),
+                lineOf(t, "controllers:"), "controllers", "expected a list of texts, got a scalar");
+  expectProblem(replaced(t, "controllers:\n  - recommended\n  - indi:none\n", ""), 1, "controllers",
+                "is missing (required)");
+  // An empty list is read without a problem and is then reported, once.
+  expectProblem(replaced(t, "controllers:\n  - recommended\n  - indi:none\n", "controllers: []\n"),
+                lineOf(t, "controllers:"), "controllers", "expected a list of at least one item");
+}
+
 TEST(SweepFile, AConfigurationListedTwiceIsNotToldToTakeAName) {
   const std::string t = sweep64();
   expectProblem(replaced(t, "  - indi:none\n", "  - recommended\n"), lineOf(t, "  - indi:none"), "controllers[1]",
