@@ -5,7 +5,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cctype>
+#include <chrono>
 #include <exception>
 #include <filesystem>
 #include <fstream>
@@ -53,6 +56,36 @@ io::Json parseRecord(const std::string& text, const std::string& key) {
     if (!j.contains(member)) return nullptr;
   }
   return j;
+}
+
+/// A record's temporary file older than this was left by a killed run (SIGKILL, a power
+/// loss): a record is written in milliseconds, so an hour leaves a concurrent writer's alone [s].
+constexpr int kStaleTemporaryS = 3600;
+
+/// Whether `name` is a record's temporary file, `.<key>.json.geaware-XXXXXX` (io::AtomicFile).
+bool isRecordTemporary(const std::string& name) {
+  constexpr std::string_view kMark = ".json.geaware-";
+  if (name.size() < 1 + kMark.size() + 6 || name.front() != '.') return false;
+  const std::size_t at = name.size() - 6 - kMark.size();
+  if (name.compare(at, kMark.size(), kMark) != 0) return false;
+  return std::all_of(name.end() - 6, name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)); });
+}
+
+/// Removes the records' temporary files in `flights` that a killed run left (older than
+/// kStaleTemporaryS); the number removed. Errors leave a file where it is.
+std::size_t removeStaleTemporaries(const fs::path& flights) {
+  std::error_code ec;
+  const auto now = fs::file_time_type::clock::now();
+  std::size_t removed = 0;
+  for (fs::directory_iterator it(flights, ec), end; !ec && it != end; it.increment(ec)) {
+    if (!isRecordTemporary(it->path().filename().string())) continue;
+    std::error_code e;
+    if (!it->is_regular_file(e) || e) continue;
+    const auto written = it->last_write_time(e);
+    if (e || now - written < std::chrono::seconds(kStaleTemporaryS)) continue;
+    if (fs::remove(it->path(), e) && !e) ++removed;
+  }
+  return removed;
 }
 
 }  // namespace
@@ -119,6 +152,7 @@ void prepareSweepDirectory(const SweepSpec& spec, const fs::path& dir) {
           "fingerprint {}); give another directory, or remove this one to start again",
           dir.string(), id.string(), old_id, spec.source, spec.fingerprint));
     }
+    (void)removeStaleTemporaries(dir / "flights");
     return;
   }
   io::writeFileAtomically(id.string(), line, "the sweep's fingerprint");

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -315,4 +316,28 @@ TEST(SweepRun, AFileWithTheKeyButNotARecordIsFlownAgain) {
   EXPECT_FALSE(ex::sweepFlightDone(d.path(), key));
   ex::writeSweepFlight(d.path(), key, ex::runSweepFlight(spec64(), key));
   EXPECT_TRUE(ex::sweepFlightDone(d.path(), key));
+}
+
+// A run killed by SIGKILL leaves its record's temporary file; the next run of the same sweep
+// removes it once it is an hour old (a younger one may be a concurrent writer's), and nothing else.
+TEST(SweepRun, AResumeRemovesTheTemporaryFilesAKilledRunLeft) {
+  TempDir d("sweep-t");
+  ex::prepareSweepDirectory(spec64(), d.path());
+  const fs::path flights = d.path() / "flights";
+  const std::string key = ex::sweepFlightPath(d.path(), ex::sweepKeys(spec64()).front()).stem().string();
+  const auto write = [&](const std::string& name, bool old) {
+    std::ofstream(flights / name) << "{\"key\":";
+    if (old) fs::last_write_time(flights / name, fs::file_time_type::clock::now() - std::chrono::hours(2));
+  };
+  const std::string stale = "." + key + ".json.geaware-a1B2c3";
+  write(stale, true);
+  write("." + key + ".json.geaware-Z9y8x7", false);  // young: perhaps another process writing
+  write(".notes.geaware-a1B2c3", true);             // not a record's
+  write("." + key + ".json.geaware-a1B2", true);     // not mkstemp's six characters
+  write(key + ".json.geaware-a1B2c3", true);         // not hidden
+  ex::prepareSweepDirectory(spec64(), d.path());
+  std::set<std::string> left;
+  for (const auto& e : fs::directory_iterator(flights)) left.insert(e.path().filename().string());
+  EXPECT_EQ(left, (std::set<std::string>{"." + key + ".json.geaware-Z9y8x7", ".notes.geaware-a1B2c3",
+                                         "." + key + ".json.geaware-a1B2", key + ".json.geaware-a1B2c3"}));
 }

@@ -154,7 +154,9 @@ inline constexpr double kSweepLongSimulatedS = 1.0e6;
 /// Makes DIR and DIR/flights, and records the spec's fingerprint in DIR/sweep.sha256; throws
 /// std::runtime_error when DIR holds another sweep's results (another fingerprint), and
 /// io::OutputError, changing nothing, when DIR has no sweep.sha256 but holds a results.json or
-/// a non-empty flights/ (not a sweep's: the merge would overwrite it, or merge it).
+/// a non-empty flights/ (not a sweep's: the merge would overwrite it, or merge it). In a DIR of
+/// this sweep it removes the records' temporary files (`.<key>.json.geaware-XXXXXX`) older than an
+/// hour, left by a run killed with SIGKILL; a younger one may be a concurrent writer's.
 void prepareSweepDirectory(const SweepSpec& spec, const std::filesystem::path& dir);
 /// Writes a key's record atomically (temporary file in DIR/flights, then rename).
 void writeSweepFlight(const std::filesystem::path& dir, const std::string& key,
