@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "geaware/sim/truth_params.hpp"
 
+#include "geaware/sim/similarity.hpp"
+
 #include "geaware/sim/sampling.hpp"
 
 #include <cmath>
@@ -158,6 +160,11 @@ TruthParams fromNominal(const model::VehicleParams& nominal) {
   p.propeller_radius_m = nominal.propeller_radius_m;
   p.k_T_N_per_rpm2 = nominal.rotor.k_T_N_per_rpm2;
   p.k_I_Nm_per_rpm2 = nominal.rotor.k_I_Nm_per_rpm2;
+  // The calibrated motor and aerodynamics, carried over to this vehicle by similarity (the
+  // reference vehicle's own values for it, bit for bit).
+  const SimilarityRatios similar = similarityToReference(nominal);
+  p.motor = scaledMotor(MotorParams{}, similar);
+  p.aero = scaledAero(RotorAeroParams{}, similar);
   p.motor.J_R_kgm2 = nominal.rotor.J_R_kgm2;
   p.motor.throttle = nominal.throttle;
   p.gravity_mps2 = model::kGravity;

@@ -8,7 +8,8 @@
 //
 // The defaults are today's world built from a vehicle file (idealWorld): the nominal truth of
 // the file, the default sensors, near-ground turbulence on, no room air, no per-flight
-// variation, an exact scale.
+// variation, an exact scale. The calibrated aerodynamics, motor and turbulence are carried over
+// to the file's vehicle by similarity (sim/similarity.hpp).
 
 #include <string>
 #include <utility>
@@ -16,6 +17,7 @@
 #include "geaware/model/vehicle_params.hpp"
 #include "geaware/sim/disturbances.hpp"
 #include "geaware/sim/sensors.hpp"
+#include "geaware/sim/similarity.hpp"
 #include "geaware/sim/truth_params.hpp"
 
 namespace geaware::sim {
@@ -62,6 +64,7 @@ struct World {
   w.source = std::move(source);
   w.vehicle = vehicle;
   w.truth = fromNominal(vehicle);
+  w.ground_turbulence_params = scaledGroundTurbulence(GroundTurbulenceParams{}, similarityToReference(vehicle));
   return w;
 }
 
