@@ -145,6 +145,7 @@ int runPlatform(const RigOptions& o) {
 int runRotor(const RigOptions& o) {
   const sim::World world = loadWorld(o);
   sim::RotorStandParams sp;
+  sp.motor_time_constant_s = world.truth.motor.time_constant_s;  // the world's motor, not a default
   sp.hold_s = o.hold_s;
   sp.sample_period_s = o.sample_period_s;
   const std::vector<double> throttles = io::parseRange(o.throttle, "--throttle").values();

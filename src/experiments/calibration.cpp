@@ -95,7 +95,9 @@ RigLogs runRigs(const model::VehicleParams& file_vehicle, const sim::TruthParams
 
   ident::RotorStandLog& stand_log = logs.stand;
   stand_log.source = "virtual single-rotor stand (campaign calibration)";
-  const sim::RotorStand stand(rotorStandVehicle(file_vehicle, truth), sweeps.stand);
+  sim::RotorStandParams stand_params = sweeps.stand;
+  stand_params.motor_time_constant_s = truth.motor.time_constant_s;  // the world's motor on the stand
+  const sim::RotorStand stand(rotorStandVehicle(file_vehicle, truth), stand_params);
   c.stand_rows = stand.sweep(sweeps.stand_throttles, 40 + sweeps.seed,
                              [&](const sim::RotorStandRow& r) {
                                stand_log.t_s.push_back(r.t_s);
