@@ -6,6 +6,7 @@
 #include <string>
 
 #include "geaware/model/mixer.hpp"
+#include "geaware/model/units.hpp"
 
 namespace geaware::model {
 namespace {
@@ -267,6 +268,27 @@ void throttleIncreasing(const P& p, FieldChecker& c) {
   }
 }
 
+/// The rotors must carry the weight out of ground effect between idle and full throttle: the
+/// hover speed √(m·g/(4·k_T)) strictly inside [√c0, √(c2 + c1 + c0)] (the curve rises, so these
+/// are its ends). Catches a k_T in N/(rad/s)² (91× too large), a mass in grams, a curve that tops
+/// out too low.
+void hoversWithinTheCurve(const P& p, FieldChecker& c) {
+  const auto& t = p.throttle;
+  const double hover = std::sqrt(p.mass_kg * kGravity / (4.0 * p.rotor.k_T_N_per_rpm2));
+  const double idle = std::sqrt(std::max(t.c0_rpm2, 0.0));
+  const double top = std::sqrt(std::max(t.c2_rpm2 + t.c1_rpm2 + t.c0_rpm2, 0.0));
+  const std::string given = "hover speed √(m·g/(4·k_T)) = " + formatValue(hover) + " rpm";
+  if (!(hover < top)) {
+    c.fail("rotor.k_T_N_per_rpm2", given,
+           "below the throttle curve's full-throttle speed √(c2 + c1 + c0) = " + formatValue(top) +
+               " rpm, or the vehicle cannot lift itself (check mass_kg, k_T in N/rpm² and the curve)");
+  } else if (!(hover > idle)) {
+    c.fail("rotor.k_T_N_per_rpm2", given,
+           "above the throttle curve's idle speed √c0 = " + formatValue(idle) +
+               " rpm, or the vehicle climbs at zero throttle (check k_T: N/rpm², not N/(rad/s)²)");
+  }
+}
+
 /// h² + g3·h + g4 would vanish at some h > 0 and M_G would be infinite there.
 void levelingDenominator(const P& p, FieldChecker& c) {
   const auto& l = p.leveling_torque;
@@ -322,6 +344,10 @@ std::vector<ParamRule<P>> rules() {
       {"throttle_curve.c0_rpm2",
        {"throttle_curve.c2_rpm2", "throttle_curve.c1_rpm2", "throttle_curve.c0_rpm2"},
        throttleIncreasing},
+      {"throttle_curve.c0_rpm2",
+       {"mass_kg", "rotor.k_T_N_per_rpm2", "throttle_curve.c2_rpm2", "throttle_curve.c1_rpm2",
+        "throttle_curve.c0_rpm2"},
+       hoversWithinTheCurve},
       {"ground_effect.leveling_torque.scale_m4",
        {"ground_effect.leveling_torque.g3_m", "ground_effect.leveling_torque.g4_m2"},
        levelingDenominator},

@@ -65,6 +65,28 @@ TEST(VehicleParams, PhysicalConsistencyChecks) {
   }
 }
 
+// The rotors carry the weight between idle and full throttle: the paper's vehicle hovers at
+// 10,187 rpm, between √c0 = 3,214 and √(c2 + c1 + c0) = 19,707 rpm.
+TEST(VehicleParams, AVehicleThatCannotHoverOnItsCurveIsRefused) {
+  const auto hoverError = [](const VehicleParams& p) {
+    for (const FieldError& e : p.validate()) {
+      if (e.field == "rotor.k_T_N_per_rpm2") return e.value + " | " + e.expected;
+    }
+    return std::string();
+  };
+  VehicleParams p = geaware_test::paperParams();
+  EXPECT_EQ(hoverError(p), "");
+  p.mass_kg = 1.696 * 3.75;  // hover at 19,727 rpm, just above the top
+  EXPECT_NE(hoverError(p).find("below the throttle curve's full-throttle speed"), std::string::npos) << hoverError(p);
+  p.mass_kg = 1.696 * 3.7;  // 19,595 rpm: it can (barely)
+  EXPECT_EQ(hoverError(p), "");
+  p = geaware_test::paperParams();
+  p.rotor.k_T_N_per_rpm2 *= 91.19;  // k_T in N/(rad/s)² typed as N/rpm², (60/2π)² too large: 1,067 rpm
+  EXPECT_NE(hoverError(p).find("above the throttle curve's idle speed"), std::string::npos) << hoverError(p);
+  p.rotor.k_T_N_per_rpm2 = geaware_test::paperParams().rotor.k_T_N_per_rpm2 * 9.0;  // 3,396 rpm: flies
+  EXPECT_EQ(hoverError(p), "");
+}
+
 TEST(VehicleModel, RefusesInvalidParameters) {
   VehicleParams p = geaware_test::paperParams();
   p.mass_kg = 0.0;
