@@ -182,6 +182,20 @@ std::vector<ScenarioProblem> validate(const FlightScenario& s, ScenarioStage sta
                          std::to_string(truth.landing_feet_B.size()) + " feet)"});
     }
   }
+  // A flight that does not stand on its gear starts in the air: at the reference's first point,
+  // at least the vehicle's lowest rotor-plane height above the surface under it (lower, the
+  // gear starts in the ground and the flight ends in its first millisecond).
+  if (!s.start_on_ground && s.trajectory && vehicle_errors.empty()) {
+    const Eigen::Vector3d start = s.trajectory->sample(0.0).p_W;
+    const double h = heightAbove(*terrainOf(s), start);
+    if (start.allFinite() && h < s.vehicle.min_rotor_plane_height_m - 1e-3) {
+      out.push_back({"trajectory",
+                     "starts " + show(h) + " m above the surface under it, at (" + show(start.x()) + ", " +
+                         show(start.y()) + ", " + show(start.z()) + ") m",
+                     "at least the vehicle's min_rotor_plane_height_m (" + show(s.vehicle.min_rotor_plane_height_m) +
+                         " m): below it the landing gear starts in the ground; fly higher, or take off"});
+    }
+  }
   // A landing or take-off reference meets the surface where the vehicle file's gear does.
   if (const double* td = touchdownHeightOf(s.trajectory.get()); td != nullptr && vehicle_errors.empty()) {
     const Eigen::Vector3d last = s.trajectory->sample(s.trajectory->duration()).p_W;
