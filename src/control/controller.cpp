@@ -32,6 +32,30 @@ const ControllerParams& validated(const ControllerParams& p) {
   return p;
 }
 
+/// The learners' heights and torques, given for the paper's vehicle, carried over to `vehicle`:
+/// heights × R/R_ref, torques × m·b/(m_ref·b_ref) (exactly the given values for the reference).
+ControllerParams withLearnersFor(const model::VehicleModel& vehicle, ControllerParams p) {
+  const model::VehicleParams& v = vehicle.params();
+  GroundEffectLearnerParams& g = p.learner;
+  if (g.reference_propeller_radius_m > 0.0) {
+    const double s = v.propeller_radius_m / g.reference_propeller_radius_m;
+    for (double& h : g.knots_m) h *= s;
+    g.far_height_m *= s;
+    g.reference_propeller_radius_m = v.propeller_radius_m;
+  }
+  LevelingLearnerParams& l = p.leveling_learner;
+  if (l.reference_mass_kg > 0.0) {
+    const double q = (v.mass_kg * v.diagonal_rotor_distance_m) / (l.reference_mass_kg * l.reference_diagonal_m);
+    for (double* t : {&l.bias_walk_sigma_Nm, &l.sample_sigma_Nm, &l.bias_sigma_Nm, &l.min_regressor_Nm,
+                      &l.max_abs_sample_Nm}) {
+      *t *= q;
+    }
+    l.reference_mass_kg = v.mass_kg;
+    l.reference_diagonal_m = v.diagonal_rotor_distance_m;
+  }
+  return p;
+}
+
 /// Which flat-map terms each configuration feeds forward.
 flatness::GroundEffectTerms referenceTerms(const ControllerParams& p) {
   const bool acc = p.acceleration == AccelerationCompensation::kModel;
@@ -68,7 +92,7 @@ flatness::FlatMap referenceMapFor(const model::VehicleModel& vehicle, const Cont
 
 Controller::Controller(const model::VehicleModel& vehicle, ControllerParams params,
                        std::shared_ptr<const ResidualForceModel> residual)
-    : params_(validated(params)),
+    : params_(withLearnersFor(vehicle, validated(params))),
       residual_(std::move(residual)),
       mass_kg_(vehicle.params().mass_kg),
       inertia_kgm2_(vehicle.params().inertia_kgm2),

@@ -60,6 +60,7 @@ std::vector<model::FieldError> GroundEffectLearnerParams::validate() const {
   }
   c.range("offset_samples", offset_samples, 1.0, 1e9, kInclusive);
   c.range("offset_sigma", offset_sigma, 0.0, 1e3, kExclusive);
+  c.range("reference_propeller_radius_m", reference_propeller_radius_m, 0.0, 5.0, kInclusive, "m");
   return e;
 }
 

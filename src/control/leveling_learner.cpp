@@ -29,6 +29,9 @@ std::vector<model::FieldError> LevelingLearnerParams::validate() const {
   c.range("max_tilt_rad", max_tilt_rad, 0.0, 1.5, kExclusive, "rad");
   c.range("max_speed_mps", max_speed_mps, 0.0, 100.0, kExclusive, "m/s");
   c.range("max_climb_mps", max_climb_mps, 0.0, 100.0, kExclusive, "m/s");
+  if (c.range("reference_mass_kg", reference_mass_kg, 0.0, 1000.0, kInclusive, "kg") && reference_mass_kg > 0.0) {
+    c.range("reference_diagonal_m", reference_diagonal_m, 0.0, 10.0, kExclusive, "m");
+  }
   return e;
 }
 

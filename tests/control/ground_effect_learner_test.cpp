@@ -12,7 +12,10 @@
 
 #include <gtest/gtest.h>
 
+#include "geaware/control/controller.hpp"
 #include "geaware/model/vehicle_model.hpp"
+#include "geaware_test/paper_vehicle.hpp"
+#include "configurations.hpp"
 
 namespace geaware::control {
 namespace {
@@ -297,6 +300,39 @@ TEST(GroundEffectLearner, InvalidParametersAreListed) {
   std::vector<double> nan_prior = zeros(r);
   nan_prior[3] = std::nan("");
   EXPECT_THROW(GroundEffectLearner(r, nan_prior), model::InvalidParameters);
+}
+
+// The learners' heights and torques are given for the paper's vehicle; a controller for another
+// vehicle learns at the same heights over propeller radius, with torques in proportion to its
+// weight × arm, and the paper's vehicle keeps them exactly.
+TEST(GroundEffectLearner, AControllerCarriesTheLearnersOverToItsVehicle) {
+  const ControllerParams p = geaware_test::named("recommended+learn");
+  const Controller paper(geaware_test::paperVehicle(), p);
+  ASSERT_NE(paper.learner(), nullptr);
+  ASSERT_EQ(paper.learner()->knots(), p.learner.knots_m.size());
+  for (std::size_t k = 0; k < p.learner.knots_m.size(); ++k) EXPECT_EQ(paper.learner()->knot_m(k), p.learner.knots_m[k]);
+  EXPECT_EQ(paper.params().leveling_learner.min_regressor_Nm, p.leveling_learner.min_regressor_Nm);
+
+  model::VehicleParams small = geaware_test::paperParams();  // a 3-inch vehicle of 250 g
+  small.propeller_radius_m = 0.0381;
+  small.diagonal_rotor_distance_m = 0.13;
+  small.mass_kg = 0.25;
+  small.inertia_kgm2 = {1.6e-4, 1.75e-4, 2.9e-4};
+  small.rotor.k_T_N_per_rpm2 = 1.262e-9;
+  small.throttle = {1.681e9, 2.46e8, 9.0e6};
+  const Controller c(model::VehicleModel(small), p);
+  const double s = 0.0381 / 0.089;
+  for (std::size_t k = 0; k < p.learner.knots_m.size(); ++k) {
+    EXPECT_NEAR(c.learner()->knot_m(k), p.learner.knots_m[k] * s, 1e-15);
+  }
+  EXPECT_NEAR(c.params().learner.far_height_m, 0.8 * s, 1e-15);
+  const double q = (0.25 * 0.13) / (1.696 * 0.35);
+  EXPECT_NEAR(c.params().leveling_learner.min_regressor_Nm, 0.004 * q, 1e-15);
+  EXPECT_NEAR(c.params().leveling_learner.sample_sigma_Nm, 0.02 * q, 1e-15);
+  // A reference radius of 0 keeps the heights as given.
+  ControllerParams as_given = p;
+  as_given.learner.reference_propeller_radius_m = 0.0;
+  EXPECT_EQ(Controller(model::VehicleModel(small), as_given).learner()->knot_m(0), p.learner.knots_m[0]);
 }
 
 }  // namespace

@@ -62,6 +62,11 @@ struct GroundEffectLearnerParams {
   double offset_samples = 400.0;
   /// σ of the offset's prior (0) once far samples have come; before any, the offset is 0 [-].
   double offset_sigma = 0.1;
+  /// The propeller radius the heights above (knots_m, far_height_m) are for: the paper's
+  /// vehicle's. The controller multiplies them by R/this for its own vehicle, so that a vehicle
+  /// of another size learns at the same heights over radius (sim/similarity.hpp's rule for
+  /// lengths); 0: the heights as given [m].
+  double reference_propeller_radius_m = 0.089;
   /// F_G never decreases as the ground comes closer: the estimate is the closest non-increasing
   /// curve (weighted isotonic regression). The paper's curve and every law of
   /// docs/sim-aerodynamics.md are monotone; off only to see the raw fit.

@@ -54,6 +54,11 @@ struct LevelingLearnerParams {
   double max_tilt_rad = 0.35;      ///< samples at a larger tilt are not used [rad]
   double max_speed_mps = 1.5;      ///< nor at a larger horizontal speed (the fade) [m/s]
   double max_climb_mps = 0.5;      ///< nor at a larger vertical speed [m/s]
+  /// The vehicle the torques above ([N·m]) are for, the paper's: the controller multiplies them
+  /// by m·b/(reference_mass_kg·reference_diagonal_m) for its own vehicle (torques scale with
+  /// weight × arm); a mass of 0: the torques as given [kg], [m].
+  double reference_mass_kg = 1.696;
+  double reference_diagonal_m = 0.35;
 
   [[nodiscard]] std::vector<model::FieldError> validate() const;
 };
