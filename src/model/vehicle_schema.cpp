@@ -289,6 +289,29 @@ void hoversWithinTheCurve(const P& p, FieldChecker& c) {
   }
 }
 
+/// A ground-effect table's heights within 100 propeller radii: the cushion is below 0.1 % beyond
+/// a few (Cheeseman & Bennett: (R/4z)² is 6·10⁻⁶ at 100·R), so a table reaching further holds
+/// heights in another unit (centimetres) or another vehicle's.
+void tableHeightsWithinReach(const std::vector<double>& heights_m, const P& p, std::string_view key,
+                             FieldChecker& c) {
+  const double reach = 100.0 * p.propeller_radius_m;
+  if (!heights_m.empty() && heights_m.back() > reach) {
+    c.fail(std::string(key) + "[" + std::to_string(heights_m.size() - 1) + "]", formatValue(heights_m.back()),
+           "a height in metres within 100 propeller radii (" + formatValue(reach) +
+               " m): no surface acts on a rotor that far (heights in cm?)");
+  }
+}
+
+void thrustTableWithinReach(const P& p, FieldChecker& c) {
+  tableHeightsWithinReach(p.additional_thrust.table.heights_m, p,
+                          "ground_effect.additional_thrust.table.heights_m", c);
+}
+
+void levelingTableWithinReach(const P& p, FieldChecker& c) {
+  tableHeightsWithinReach(p.leveling_torque.table.heights_m, p,
+                          "ground_effect.leveling_torque.table.heights_m", c);
+}
+
 /// h² + g3·h + g4 would vanish at some h > 0 and M_G would be infinite there.
 void levelingDenominator(const P& p, FieldChecker& c) {
   const auto& l = p.leveling_torque;
@@ -351,6 +374,12 @@ std::vector<ParamRule<P>> rules() {
       {"ground_effect.leveling_torque.scale_m4",
        {"ground_effect.leveling_torque.g3_m", "ground_effect.leveling_torque.g4_m2"},
        levelingDenominator},
+      {"ground_effect.additional_thrust.table.F_G",
+       {"geometry.propeller_radius_m", "ground_effect.additional_thrust.table.heights_m"},
+       thrustTableWithinReach},
+      {"ground_effect.leveling_torque.table.M_G_m",
+       {"geometry.propeller_radius_m", "ground_effect.leveling_torque.table.heights_m"},
+       levelingTableWithinReach},
       {"rotor_layout.rotor4.px4_motor",
        {"geometry.diagonal_rotor_distance_m", "rotor_layout.rotor1.x_m", "rotor_layout.rotor1.y_m",
         "rotor_layout.rotor1.spin", "rotor_layout.rotor1.px4_motor", "rotor_layout.rotor2.x_m",

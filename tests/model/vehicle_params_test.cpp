@@ -87,6 +87,21 @@ TEST(VehicleParams, AVehicleThatCannotHoverOnItsCurveIsRefused) {
   EXPECT_EQ(hoverError(p), "");
 }
 
+// A ground-effect table reaching beyond 100 propeller radii (8.9 m here) holds heights in
+// centimetres: refused at its last height; the same table in metres is fine.
+TEST(VehicleParams, AGroundEffectTableInCentimetresIsRefused) {
+  VehicleParams p = geaware_test::paperParams();
+  p.additional_thrust.table.heights_m = {0.08, 0.12, 0.2, 0.5};
+  p.additional_thrust.table.values = {0.3, 0.2, 0.1, 0.02};
+  EXPECT_TRUE(p.validate().empty());
+  p.additional_thrust.table.heights_m = {8.0, 12.0, 20.0, 50.0};
+  EXPECT_TRUE(hasField(p.validate(), "ground_effect.additional_thrust.table.heights_m[3]"));
+  p = geaware_test::paperParams();
+  p.leveling_torque.table.heights_m = {7.0, 18.0, 40.0};
+  p.leveling_torque.table.values = {0.01, 0.02, 0.001};
+  EXPECT_TRUE(hasField(p.validate(), "ground_effect.leveling_torque.table.heights_m[2]"));
+}
+
 TEST(VehicleModel, RefusesInvalidParameters) {
   VehicleParams p = geaware_test::paperParams();
   p.mass_kg = 0.0;
