@@ -88,7 +88,11 @@ std::vector<std::string> screenRotorStand(RotorStandLog& log, const RotorStandCo
       n, [&](std::size_t i) { return log.rpm[i] != 0.0 && log.thrust_N[i] > 0.0; }, log.t_s, log.throttle,
       log.rpm, log.thrust_N, log.torque_Nm, log.voltage_V);
   std::vector<std::string> notes;
-  if (dropped > 0) notes.push_back(droppedNote(dropped, n, "at rpm = 0 or thrust ≤ 0 (a stopped rotor, or an idle thrust within the load cell's noise)"));
+  if (dropped > 0) {
+    notes.push_back(droppedNote(dropped, n,
+                                "at rpm = 0 or thrust ≤ 0 (a stopped rotor, or an idle thrust within the "
+                                "load cell's noise)"));
+  }
   return notes;
 }
 
