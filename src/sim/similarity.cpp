@@ -9,7 +9,8 @@
 namespace geaware::sim {
 namespace {
 
-/// √(m·g/(4·k_T)): the rotor speed at which four rotors carry the weight out of ground effect [rpm].
+/// √(m·g/(4·k_T)): the rotor speed at which four rotors carry the weight out of ground effect
+/// [rpm].
 double hoverSpeedRpm(double mass_kg, double k_T_N_per_rpm2) noexcept {
   return std::sqrt(mass_kg * model::kGravity / (4.0 * k_T_N_per_rpm2));
 }
@@ -62,7 +63,8 @@ RotorAeroParams scaledAero(const RotorAeroParams& ref, const SimilarityRatios& r
   return a;
 }
 
-GroundTurbulenceParams scaledGroundTurbulence(const GroundTurbulenceParams& ref, const SimilarityRatios& r) noexcept {
+GroundTurbulenceParams scaledGroundTurbulence(const GroundTurbulenceParams& ref,
+                                              const SimilarityRatios& r) noexcept {
   GroundTurbulenceParams g = ref;
   g.force_std_N = ref.force_std_N * r.mass;
   g.torque_std_Nm = ref.torque_std_Nm * (r.mass * r.arm);

@@ -5,10 +5,10 @@
 // the vehicle's own throttle curve.
 #include "geaware/sim/similarity.hpp"
 
+#include <gtest/gtest.h>
+
 #include <array>
 #include <cmath>
-
-#include <gtest/gtest.h>
 
 #include "geaware/sim/world.hpp"
 #include "geaware_test/paper_vehicle.hpp"
@@ -47,20 +47,20 @@ TEST(Similarity, TheReferenceVehicleKeepsEveryCalibratedValueBitForBit) {
   const World w = idealWorld(geaware_test::paperParams());
   const RotorAeroParams a;
   const RotorAeroParams& b = w.truth.aero;
-  for (const auto& [x, y] : std::array<std::array<double, 2>, 13>{{
-           {a.impingement_slope_per_m, b.impingement_slope_per_m},
-           {a.wake_merge_height_m, b.wake_merge_height_m},
-           {a.wake_merge_softness_m, b.wake_merge_softness_m},
-           {a.recirculation_height_m, b.recirculation_height_m},
-           {a.redistribution_cap_per_m, b.redistribution_cap_per_m},
-           {a.ground_effect_range_m, b.ground_effect_range_m},
-           {a.induced_velocity_mps, b.induced_velocity_mps},
-           {a.induced_velocity_ref_rpm, b.induced_velocity_ref_rpm},
-           {a.drag_x_N_per_mps_per_rpm, b.drag_x_N_per_mps_per_rpm},
-           {a.drag_y_N_per_mps_per_rpm, b.drag_y_N_per_mps_per_rpm},
-           {a.drag_ground_height_m, b.drag_ground_height_m},
-           {MotorParams{}.max_speed_rpm, w.truth.motor.max_speed_rpm},
-           {MotorParams{}.time_constant_s, w.truth.motor.time_constant_s}}}) {
+  for (const auto& [x, y] : std::array<std::array<double, 2>, 13>{
+           {{a.impingement_slope_per_m, b.impingement_slope_per_m},
+            {a.wake_merge_height_m, b.wake_merge_height_m},
+            {a.wake_merge_softness_m, b.wake_merge_softness_m},
+            {a.recirculation_height_m, b.recirculation_height_m},
+            {a.redistribution_cap_per_m, b.redistribution_cap_per_m},
+            {a.ground_effect_range_m, b.ground_effect_range_m},
+            {a.induced_velocity_mps, b.induced_velocity_mps},
+            {a.induced_velocity_ref_rpm, b.induced_velocity_ref_rpm},
+            {a.drag_x_N_per_mps_per_rpm, b.drag_x_N_per_mps_per_rpm},
+            {a.drag_y_N_per_mps_per_rpm, b.drag_y_N_per_mps_per_rpm},
+            {a.drag_ground_height_m, b.drag_ground_height_m},
+            {MotorParams{}.max_speed_rpm, w.truth.motor.max_speed_rpm},
+            {MotorParams{}.time_constant_s, w.truth.motor.time_constant_s}}}) {
     EXPECT_EQ(x, y);
   }
   const GroundTurbulenceParams g;
@@ -79,16 +79,18 @@ TEST(Similarity, ASimilarVehicleSeesTheSameCushionAtTheSameHeightOverRadius) {
     const RotorAerodynamics small(t.rotorGeometry(), t.aero);
     // A level vehicle and a tilted one (rotors at different heights), from below the
     // recirculation peak to beyond the wake merge.
-    for (const std::array<double, 4> d :
-         {std::array<double, 4>{0.05, 0.05, 0.05, 0.05}, std::array<double, 4>{0.09, 0.09, 0.09, 0.09},
-          std::array<double, 4>{0.12, 0.16, 0.20, 0.16}, std::array<double, 4>{0.25, 0.30, 0.35, 0.30},
-          std::array<double, 4>{0.6, 0.6, 0.6, 0.6}}) {
+    for (const std::array<double, 4> d : {std::array<double, 4>{0.05, 0.05, 0.05, 0.05},
+                                          std::array<double, 4>{0.09, 0.09, 0.09, 0.09},
+                                          std::array<double, 4>{0.12, 0.16, 0.20, 0.16},
+                                          std::array<double, 4>{0.25, 0.30, 0.35, 0.30},
+                                          std::array<double, 4>{0.6, 0.6, 0.6, 0.6}}) {
       std::array<double, 4> ds{};
       for (std::size_t i = 0; i < 4; ++i) ds[i] = d[i] * s;
       const auto phi = paper.additionalThrustFraction(d);
       const auto phi_s = small.additionalThrustFraction(ds);
       for (std::size_t i = 0; i < 4; ++i) {
-        EXPECT_NEAR(phi_s[i], phi[i], 1e-12 + 1e-9 * std::abs(phi[i])) << "s " << s << ", rotor " << i << " at " << d[i] << " m";
+        EXPECT_NEAR(phi_s[i], phi[i], 1e-12 + 1e-9 * std::abs(phi[i]))
+            << "s " << s << ", rotor " << i << " at " << d[i] << " m";
       }
       const auto q = paper.groundFactors(d);
       const auto q_s = small.groundFactors(ds);
@@ -109,7 +111,8 @@ TEST(Similarity, TheMotorsCeilingFollowsTheVehiclesCurveAndItsLagTheFroudeRule) 
   v.throttle = {1.681e9, 2.46e8, 9.0e6};
   const TruthParams t = fromNominal(v);
   EXPECT_NEAR(topSpeedRpm(v.throttle), 44000.0, 1e-9);
-  EXPECT_NEAR(t.motor.max_speed_rpm, 21000.0 * 44000.0 / topSpeedRpm(geaware_test::paperParams().throttle), 1e-9);
+  EXPECT_NEAR(t.motor.max_speed_rpm,
+              21000.0 * 44000.0 / topSpeedRpm(geaware_test::paperParams().throttle), 1e-9);
   EXPECT_GT(t.motor.max_speed_rpm, 44000.0);
   EXPECT_NEAR(t.motor.time_constant_s, 0.03 * std::sqrt(0.0381 / 0.089), 1e-15);
   // The curve's top inside [0, 1] when it bends over (c2 < 0 with its vertex at t = 0.5).

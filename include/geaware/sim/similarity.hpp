@@ -21,13 +21,13 @@ namespace geaware::sim {
 /// The reference vehicle's values the ratios are taken against (config/vehicles/paper_quad.yaml;
 /// a test checks that they are the built-in vehicle's).
 struct ReferenceVehicle {
-  static constexpr double kMassKg = 1.696;                   ///< [kg]
-  static constexpr double kPropellerRadiusM = 0.089;         ///< [m]
-  static constexpr double kDiagonalRotorDistanceM = 0.35;    ///< [m]
+  static constexpr double kMassKg = 1.696;                         ///< [kg]
+  static constexpr double kPropellerRadiusM = 0.089;               ///< [m]
+  static constexpr double kDiagonalRotorDistanceM = 0.35;          ///< [m]
   static constexpr double kThrustCoefficientNPerRpm2 = 4.0083e-8;  ///< k_T [N/rpm²]
-  static constexpr double kThrottleC2Rpm2 = -1.448471e8;     ///< [rpm²]
-  static constexpr double kThrottleC1Rpm2 = 5.228928e8;      ///< [rpm²]
-  static constexpr double kThrottleC0Rpm2 = 1.033111e7;      ///< [rpm²]
+  static constexpr double kThrottleC2Rpm2 = -1.448471e8;           ///< [rpm²]
+  static constexpr double kThrottleC1Rpm2 = 5.228928e8;            ///< [rpm²]
+  static constexpr double kThrottleC0Rpm2 = 1.033111e7;            ///< [rpm²]
 };
 
 /// A vehicle against the reference vehicle: each ratio is the vehicle's value over the
@@ -52,7 +52,8 @@ struct SimilarityRatios {
 /// × r.length, slopes per metre ÷ r.length, per-rotor drag per rpm × r.length³, the induced
 /// velocity × r.inducedVelocity() at the reference speed × r.hover_speed; dimensionless
 /// coefficients and the air unchanged.
-[[nodiscard]] RotorAeroParams scaledAero(const RotorAeroParams& reference, const SimilarityRatios& r) noexcept;
+[[nodiscard]] RotorAeroParams scaledAero(const RotorAeroParams& reference,
+                                         const SimilarityRatios& r) noexcept;
 
 /// The near-ground turbulence `reference` carried over: forces × r.mass (the weight), torques
 /// × r.mass·r.arm, heights × r.length, the correlation time (≈ D/v_i) × r.length /
@@ -62,6 +63,7 @@ struct SimilarityRatios {
 
 /// The motor `reference` carried over: the speed ceiling × r.top_speed, the time constant
 /// × √r.length; the throttle curve and J_R are the vehicle's (set by fromNominal).
-[[nodiscard]] MotorParams scaledMotor(const MotorParams& reference, const SimilarityRatios& r) noexcept;
+[[nodiscard]] MotorParams scaledMotor(const MotorParams& reference,
+                                      const SimilarityRatios& r) noexcept;
 
 }  // namespace geaware::sim
