@@ -85,8 +85,16 @@ struct RotorRigResult {
                                         const std::string& produced_by);
 
 /// The truth's calibration against the paper as a text table (one line per target, a summary).
+/// `world`: where the aerodynamics came from. `differs`: empty when the world's rotors are the
+/// paper vehicle's (its targets apply); otherwise how they differ, said in the text, whose
+/// results are then information ("info"), not a test.
 [[nodiscard]] std::string calibrationText(const sim::CalibrationResult& result,
-                                          const std::string& vehicle_name);
+                                          const std::string& vehicle_name, const std::string& world,
+                                          const std::string& differs);
+
+/// Empty when `vehicle`'s rotors are the paper vehicle's (propeller radius, rotor diagonal and
+/// k_T: the calibration targets are measurements of them); otherwise what differs.
+[[nodiscard]] std::string differsFromThePapersRotors(const model::VehicleParams& vehicle);
 
 /// The calibration page: the targets' table and the truth's curves beside the paper's points.
 [[nodiscard]] report::Page calibrationPage(const sim::CalibrationResult& result,
