@@ -182,18 +182,32 @@ std::vector<ScenarioProblem> validate(const FlightScenario& s, ScenarioStage sta
                          std::to_string(truth.landing_feet_B.size()) + " feet)"});
     }
   }
-  // A flight that does not stand on its gear starts in the air: at the reference's first point,
-  // at least the vehicle's lowest rotor-plane height above the surface under it (lower, the
-  // gear starts in the ground and the flight ends in its first millisecond).
+  // A flight that does not stand on its gear starts in the air: level at the reference's first
+  // point and yaw, no foot of the world's gear below the surface under it, by the plant's own
+  // strike rule (deeper than the leg's compression with ground contact, at all without), or the
+  // flight ends in its first millisecond.
   if (!s.start_on_ground && s.trajectory && vehicle_errors.empty()) {
-    const Eigen::Vector3d start = s.trajectory->sample(0.0).p_W;
-    const double h = heightAbove(*terrainOf(s), start);
-    if (start.allFinite() && h < s.vehicle.min_rotor_plane_height_m - 1e-3) {
-      out.push_back({"trajectory",
-                     "starts " + show(h) + " m above the surface under it, at (" + show(start.x()) + ", " +
-                         show(start.y()) + ", " + show(start.z()) + ") m",
-                     "at least the vehicle's min_rotor_plane_height_m (" + show(s.vehicle.min_rotor_plane_height_m) +
-                         " m): below it the landing gear starts in the ground; fly higher, or take off"});
+    const traj::FlatOutput first = s.trajectory->sample(0.0);
+    const sim::TruthParams truth = s.truth ? *s.truth : sim::fromNominal(s.vehicle);
+    if (first.p_W.allFinite() && std::isfinite(first.yaw_rad)) {
+      const auto terrain = terrainOf(s);
+      const Eigen::Matrix3d R = Eigen::AngleAxisd(first.yaw_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      const double allowance_m = s.plant.ground_contact ? truth.landing_gear.max_compression_m : 0.0;
+      double deepest_m = allowance_m;
+      double gear_m = 0.0;  // how far the lowest foot hangs below the rotor plane
+      for (const Eigen::Vector3d& f : truth.landing_feet_B) {
+        const Eigen::Vector3d p = first.p_W + R * f;
+        deepest_m = std::max(deepest_m, terrain->heightAt(p.x(), p.y()) - p.z());
+        gear_m = std::max(gear_m, -f.z());
+      }
+      if (deepest_m > allowance_m) {
+        out.push_back({"trajectory",
+                       "starts at (" + show(first.p_W.x()) + ", " + show(first.p_W.y()) + ", " +
+                           show(first.p_W.z()) + ") m with a landing foot " + show(deepest_m) +
+                           " m inside the surface",
+                       "a start with every foot of the world's gear (" + show(gear_m) +
+                           " m below the rotor plane) on or above the surface: fly higher, or take off"});
+      }
     }
   }
   // A landing or take-off reference meets the surface where the vehicle file's gear does.
