@@ -126,13 +126,17 @@ report::Page rotorRigPage(const std::vector<sim::RotorStandRow>& rows, const std
 
 std::string differsFromThePapersRotors(const model::VehicleParams& v) {
   using Ref = sim::ReferenceVehicle;
-  if (v.propeller_radius_m == Ref::kPropellerRadiusM && v.diagonal_rotor_distance_m == Ref::kDiagonalRotorDistanceM &&
+  // The mass counts too: the drag targets are at the hover speed √(m·g/(4·k_T)).
+  if (v.mass_kg == Ref::kMassKg && v.propeller_radius_m == Ref::kPropellerRadiusM &&
+      v.diagonal_rotor_distance_m == Ref::kDiagonalRotorDistanceM &&
       v.rotor.k_T_N_per_rpm2 == Ref::kThrustCoefficientNPerRpm2) {
     return {};
   }
-  return fmt::format("R {:.4g} m, b {:.4g} m, k_T {:.4g} N/rpm² against the paper vehicle's {:.4g} m, {:.4g} m, {:.4g}",
-                     v.propeller_radius_m, v.diagonal_rotor_distance_m, v.rotor.k_T_N_per_rpm2,
-                     Ref::kPropellerRadiusM, Ref::kDiagonalRotorDistanceM, Ref::kThrustCoefficientNPerRpm2);
+  return fmt::format(
+      "m {:.4g} kg, R {:.4g} m, b {:.4g} m, k_T {:.4g} N/rpm² against the paper vehicle's {:.4g} kg, "
+      "{:.4g} m, {:.4g} m, {:.4g}",
+      v.mass_kg, v.propeller_radius_m, v.diagonal_rotor_distance_m, v.rotor.k_T_N_per_rpm2, Ref::kMassKg,
+      Ref::kPropellerRadiusM, Ref::kDiagonalRotorDistanceM, Ref::kThrustCoefficientNPerRpm2);
 }
 
 std::string calibrationText(const sim::CalibrationResult& res, const std::string& vehicle_name,

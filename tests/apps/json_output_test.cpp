@@ -162,7 +162,12 @@ fs::path scratch() {
 TEST(JsonOutput, RigCalibratePrintsOnlyJson) {
   const Json doc = parse(geaware("rig calibrate --json -"), "rig calibrate");
   EXPECT_TRUE(doc["all_pass"].is_boolean());
+  EXPECT_TRUE(doc["papers_rotors"].get<bool>());
   EXPECT_FALSE(doc["checks"].empty());
+  // Another vehicle's rotors: the paper's targets are information, neither passed nor failed.
+  const Json other = parse(geaware("rig calibrate --truth config/truths/quad5_as_built.yaml --json -"), "rig calibrate");
+  EXPECT_FALSE(other["papers_rotors"].get<bool>());
+  EXPECT_TRUE(other["all_pass"].is_null());
 }
 
 TEST(JsonOutput, IdentifyFromRigLogsPrintsOnlyJson) {

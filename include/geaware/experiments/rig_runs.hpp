@@ -92,8 +92,8 @@ struct RotorRigResult {
                                           const std::string& vehicle_name, const std::string& world,
                                           const std::string& differs);
 
-/// Empty when `vehicle`'s rotors are the paper vehicle's (propeller radius, rotor diagonal and
-/// k_T: the calibration targets are measurements of them); otherwise what differs.
+/// Empty when `vehicle`'s rotors are the paper vehicle's (mass, propeller radius, rotor diagonal
+/// and k_T: the calibration targets are measurements of them); otherwise what differs.
 [[nodiscard]] std::string differsFromThePapersRotors(const model::VehicleParams& vehicle);
 
 /// The calibration page: the targets' table and the truth's curves beside the paper's points.
