@@ -72,20 +72,17 @@ bool isRecordTemporary(const std::string& name) {
 }
 
 /// Removes the records' temporary files in `flights` that a killed run left (older than
-/// kStaleTemporaryS); the number removed. Errors leave a file where it is.
-std::size_t removeStaleTemporaries(const fs::path& flights) {
+/// kStaleTemporaryS). Errors leave a file where it is.
+void removeStaleTemporaries(const fs::path& flights) {
   std::error_code ec;
   const auto now = fs::file_time_type::clock::now();
-  std::size_t removed = 0;
   for (fs::directory_iterator it(flights, ec), end; !ec && it != end; it.increment(ec)) {
     if (!isRecordTemporary(it->path().filename().string())) continue;
     std::error_code e;
     if (!it->is_regular_file(e) || e) continue;
     const auto written = it->last_write_time(e);
-    if (e || now - written < std::chrono::seconds(kStaleTemporaryS)) continue;
-    if (fs::remove(it->path(), e) && !e) ++removed;
+    if (!e && now - written >= std::chrono::seconds(kStaleTemporaryS)) fs::remove(it->path(), e);
   }
-  return removed;
 }
 
 }  // namespace
@@ -152,7 +149,7 @@ void prepareSweepDirectory(const SweepSpec& spec, const fs::path& dir) {
           "fingerprint {}); give another directory, or remove this one to start again",
           dir.string(), id.string(), old_id, spec.source, spec.fingerprint));
     }
-    (void)removeStaleTemporaries(dir / "flights");
+    removeStaleTemporaries(dir / "flights");
     return;
   }
   io::writeFileAtomically(id.string(), line, "the sweep's fingerprint");

@@ -12,6 +12,10 @@ double rotorReactionTorque(const RotorParams& p, double n_rpm, double n_dot_rpm_
   return p.k_I_Nm_per_rpm2 * n_rpm * n_rpm + p.J_R_kgm2 * n_dot_rpm_per_s * kRpmToRadPerSec;
 }
 
+double freeAirHoverSpeedRpm(double mass_kg, double k_T_N_per_rpm2) noexcept {
+  return std::sqrt(mass_kg * kGravity / (4.0 * k_T_N_per_rpm2));
+}
+
 ThrottleCurve::ThrottleCurve(const ThrottleCurveParams& p)
     : p_(p),
       n_min_rpm_(std::sqrt(p.c0_rpm2)),

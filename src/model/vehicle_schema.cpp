@@ -6,7 +6,7 @@
 #include <string>
 
 #include "geaware/model/mixer.hpp"
-#include "geaware/model/units.hpp"
+#include "geaware/model/motor.hpp"
 
 namespace geaware::model {
 namespace {
@@ -273,10 +273,10 @@ void throttleIncreasing(const P& p, FieldChecker& c) {
 /// are its ends). Catches a k_T in N/(rad/s)² (91× too large), a mass in grams, a curve that tops
 /// out too low.
 void hoversWithinTheCurve(const P& p, FieldChecker& c) {
-  const auto& t = p.throttle;
-  const double hover = std::sqrt(p.mass_kg * kGravity / (4.0 * p.rotor.k_T_N_per_rpm2));
-  const double idle = std::sqrt(std::max(t.c0_rpm2, 0.0));
-  const double top = std::sqrt(std::max(t.c2_rpm2 + t.c1_rpm2 + t.c0_rpm2, 0.0));
+  const double hover = freeAirHoverSpeedRpm(p.mass_kg, p.rotor.k_T_N_per_rpm2);
+  const ThrottleCurve curve(p.throttle);
+  const double idle = curve.minSpeedRpm();
+  const double top = curve.maxSpeedRpm();
   const std::string given = "hover speed √(m·g/(4·k_T)) = " + formatValue(hover) + " rpm";
   if (!(hover < top)) {
     c.fail("rotor.k_T_N_per_rpm2", given,

@@ -3,31 +3,13 @@
 
 #include "geaware/sim/similarity.hpp"
 
-#include <algorithm>
 #include <cmath>
 
+#include "geaware/model/motor.hpp"
+
 namespace geaware::sim {
-namespace {
-
-/// √(m·g/(4·k_T)): the rotor speed at which four rotors carry the weight out of ground effect
-/// [rpm].
-double hoverSpeedRpm(double mass_kg, double k_T_N_per_rpm2) noexcept {
-  return std::sqrt(mass_kg * model::kGravity / (4.0 * k_T_N_per_rpm2));
-}
-
-}  // namespace
 
 double SimilarityRatios::inducedVelocity() const noexcept { return std::sqrt(mass) / length; }
-
-double topSpeedRpm(const model::ThrottleCurveParams& c) noexcept {
-  // n² = c2·t² + c1·t + c0 on [0, 1]: its largest value is at an end or at the vertex.
-  double top = std::max(c.c0_rpm2, c.c2_rpm2 + c.c1_rpm2 + c.c0_rpm2);
-  if (c.c2_rpm2 < 0.0) {
-    const double t = -c.c1_rpm2 / (2.0 * c.c2_rpm2);
-    if (t > 0.0 && t < 1.0) top = std::max(top, (c.c2_rpm2 * t + c.c1_rpm2) * t + c.c0_rpm2);
-  }
-  return std::sqrt(std::max(top, 0.0));
-}
 
 SimilarityRatios similarityToReference(const model::VehicleParams& v) noexcept {
   using Ref = ReferenceVehicle;
@@ -39,9 +21,10 @@ SimilarityRatios similarityToReference(const model::VehicleParams& v) noexcept {
   r.length = v.propeller_radius_m / Ref::kPropellerRadiusM;
   r.mass = v.mass_kg / Ref::kMassKg;
   r.arm = v.diagonal_rotor_distance_m / Ref::kDiagonalRotorDistanceM;
-  r.hover_speed = hoverSpeedRpm(v.mass_kg, v.rotor.k_T_N_per_rpm2) /
-                  hoverSpeedRpm(Ref::kMassKg, Ref::kThrustCoefficientNPerRpm2);
-  r.top_speed = topSpeedRpm(v.throttle) / topSpeedRpm(ref_curve);
+  r.hover_speed = model::freeAirHoverSpeedRpm(v.mass_kg, v.rotor.k_T_N_per_rpm2) /
+                  model::freeAirHoverSpeedRpm(Ref::kMassKg, Ref::kThrustCoefficientNPerRpm2);
+  r.top_speed = model::ThrottleCurve(v.throttle).maxSpeedRpm() /
+                model::ThrottleCurve(ref_curve).maxSpeedRpm();
   return r;
 }
 

@@ -307,6 +307,10 @@ TEST(GroundEffectLearner, InvalidParametersAreListed) {
 // weight × arm, and the paper's vehicle keeps them exactly.
 TEST(GroundEffectLearner, AControllerCarriesTheLearnersOverToItsVehicle) {
   const ControllerParams p = geaware_test::named("recommended+learn");
+  // The reference the learners' defaults are given for is the built-in vehicle.
+  EXPECT_EQ(p.learner.reference_propeller_radius_m, geaware_test::paperParams().propeller_radius_m);
+  EXPECT_EQ(p.leveling_learner.reference_mass_kg, geaware_test::paperParams().mass_kg);
+  EXPECT_EQ(p.leveling_learner.reference_diagonal_m, geaware_test::paperParams().diagonal_rotor_distance_m);
   const Controller paper(geaware_test::paperVehicle(), p);
   ASSERT_NE(paper.learner(), nullptr);
   ASSERT_EQ(paper.learner()->knots(), p.learner.knots_m.size());

@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 
+#include "geaware/model/motor.hpp"
 #include "geaware/sim/world.hpp"
 #include "geaware_test/paper_vehicle.hpp"
 
@@ -110,13 +111,13 @@ TEST(Similarity, TheMotorsCeilingFollowsTheVehiclesCurveAndItsLagTheFroudeRule) 
   v.rotor.k_T_N_per_rpm2 = 1.262e-9;
   v.throttle = {1.681e9, 2.46e8, 9.0e6};
   const TruthParams t = fromNominal(v);
-  EXPECT_NEAR(topSpeedRpm(v.throttle), 44000.0, 1e-9);
-  EXPECT_NEAR(t.motor.max_speed_rpm,
-              21000.0 * 44000.0 / topSpeedRpm(geaware_test::paperParams().throttle), 1e-9);
+  EXPECT_NEAR(model::ThrottleCurve(v.throttle).maxSpeedRpm(), 44000.0, 1e-9);
+  EXPECT_NEAR(
+      t.motor.max_speed_rpm,
+      21000.0 * 44000.0 / model::ThrottleCurve(geaware_test::paperParams().throttle).maxSpeedRpm(),
+      1e-9);
   EXPECT_GT(t.motor.max_speed_rpm, 44000.0);
   EXPECT_NEAR(t.motor.time_constant_s, 0.03 * std::sqrt(0.0381 / 0.089), 1e-15);
-  // The curve's top inside [0, 1] when it bends over (c2 < 0 with its vertex at t = 0.5).
-  EXPECT_NEAR(topSpeedRpm({-4.0e8, 4.0e8, 1.0e6}), std::sqrt(1.01e8), 1e-6);
   // Per-rotor drag per rpm ∝ R³; the turbulence forces with the weight.
   EXPECT_NEAR(t.aero.drag_x_N_per_mps_per_rpm / RotorAeroParams{}.drag_x_N_per_mps_per_rpm,
               std::pow(0.0381 / 0.089, 3), 1e-12);

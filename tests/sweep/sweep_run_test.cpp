@@ -326,7 +326,7 @@ TEST(SweepRun, AResumeRemovesTheTemporaryFilesAKilledRunLeft) {
   const fs::path flights = d.path() / "flights";
   const std::string key = ex::sweepFlightPath(d.path(), ex::sweepKeys(spec64()).front()).stem().string();
   const auto write = [&](const std::string& name, bool old) {
-    std::ofstream(flights / name) << "{\"key\":";
+    std::ofstream(flights / name) << geaware::io::Json{{"key", key}}.dump().substr(0, 8);  // cut short
     if (old) fs::last_write_time(flights / name, fs::file_time_type::clock::now() - std::chrono::hours(2));
   };
   const std::string stale = "." + key + ".json.geaware-a1B2c3";

@@ -12,6 +12,9 @@ namespace geaware::model {
   return p.k_T_N_per_rpm2 * n_rpm * n_rpm;
 }
 
+/// The rotor speed at which four rotors carry m·g out of ground effect, √(m·g/(4·k_T)) [rpm].
+[[nodiscard]] double freeAirHoverSpeedRpm(double mass_kg, double k_T_N_per_rpm2) noexcept;
+
 /// Reaction-torque magnitude of one rotor, M_i = k_I·n_i² + J_R·ṅ_i [N·m]. J_R is in kg·m², so
 /// ṅ (given in rpm/s) is converted to rad/s² here. The spin sign is applied by the mixer.
 [[nodiscard]] double rotorReactionTorque(const RotorParams& p, double n_rpm,

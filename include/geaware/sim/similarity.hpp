@@ -37,13 +37,10 @@ struct SimilarityRatios {
   double mass = 1.0;         ///< m / m_ref [-]
   double arm = 1.0;          ///< diagonal rotor distance / the reference's [-]
   double hover_speed = 1.0;  ///< √(m·g/(4·k_T)) / the reference's [-]
-  double top_speed = 1.0;    ///< the throttle curve's highest speed on [0, 1] / the reference's [-]
+  double top_speed = 1.0;    ///< the throttle curve's full-throttle speed / the reference's [-]
   /// The induced velocity in hover, √(T/(2ρA)) ∝ √m / R, over the reference's [-].
   [[nodiscard]] double inducedVelocity() const noexcept;
 };
-
-/// The throttle curve's highest rotor speed over throttle [0, 1] at its nominal voltage [rpm].
-[[nodiscard]] double topSpeedRpm(const model::ThrottleCurveParams& curve) noexcept;
 
 /// `vehicle` (validated) against the reference vehicle.
 [[nodiscard]] SimilarityRatios similarityToReference(const model::VehicleParams& vehicle) noexcept;
